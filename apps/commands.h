@@ -1,0 +1,10 @@
+#pragma once
+// Each subcommand lives in its own cmd_<name>.cpp and registers itself on the
+// top-level CLI11 app; main.cpp calls these in the order shown by --help.
+#include <CLI/CLI.hpp>
+
+namespace stillslam::apps {
+
+void add_eval_command(CLI::App& app);
+
+}  // namespace stillslam::apps

@@ -1,0 +1,25 @@
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+#include "commands.h"
+#include "stillslam/core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"stillslam: feature-based visual SLAM that ignores moving people and objects"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "stillslam 0.1");
+  stillslam::apps::add_eval_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const stillslam::Error& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    spdlog::error("unexpected error: {}", e.what());
+    return 2;
+  }
+  return 0;
+}

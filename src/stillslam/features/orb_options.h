@@ -1,0 +1,14 @@
+#pragma once
+
+namespace stillslam {
+
+// ORB extraction settings, named as ORB-SLAM3's ORBextractor.* keys.
+struct OrbOptions {
+  int n_features = 1000;     // ORBextractor.nFeatures
+  float scale_factor = 1.2f; // ORBextractor.scaleFactor
+  int n_levels = 8;          // ORBextractor.nLevels
+  int ini_th_fast = 20;      // ORBextractor.iniThFAST
+  int min_th_fast = 7;       // ORBextractor.minThFAST
+};
+
+}  // namespace stillslam
