@@ -1,0 +1,45 @@
+#pragma once
+// Run settings read from an ORB-SLAM3-compatible OpenCV YAML file. Both the
+// old key style (Camera.fx, Camera.bf, ThDepth, DepthMapFactor) and the new
+// one (File.version "1.0", Camera1.*, Camera2.*, Stereo.*, RGBD.*) load
+// unchanged; our own keys live under Segmentation.*.
+#include <filesystem>
+#include <optional>
+
+#include "stillslam/features/orb_options.h"
+#include "stillslam/geometry/camera_calibration.h"
+#include "stillslam/segmentation/segmentation_options.h"
+
+namespace stillslam {
+
+enum class SensorType { Monocular, Stereo, Rgbd };
+
+struct Settings {
+  std::filesystem::path file;               // where it was read from
+  CameraCalibration camera;                 // left / RGB camera
+  std::optional<StereoCalibration> stereo;  // when the file describes a stereo pair
+  double bf = 0;                            // baseline * fx (Camera.bf, or Stereo.b * fx)
+  double th_depth = 40;                     // ThDepth / Stereo.ThDepth, in baselines
+  double depth_map_factor = 5000;           // DepthMapFactor / RGBD.DepthMapFactor
+  double fps = 30;                          // Camera.fps
+  // Camera.RGB: 1 = the dataset's images are RGB-ordered (TUM), 0 = BGR. The
+  // readers always hand out BGR (cv::imread order) so nothing converts on it.
+  bool rgb = true;
+  OrbOptions orb;                           // ORBextractor.*
+  SegmentationOptions segmentation;         // Segmentation.*; model path made
+                                            // absolute relative to the file's directory
+
+  // Depth (metres) below which a stereo/RGB-D point counts as close:
+  // th_depth * baseline, baseline = bf / fx. 0 when there is no baseline.
+  double close_depth() const;
+  double baseline() const;  // bf / fx, 0 when unknown
+};
+
+// Reads and validates a settings file; throws stillslam::Error naming the file
+// and the offending key.
+Settings load_settings(const std::filesystem::path& yaml);
+
+// Human-readable name of a sensor type ("monocular", "stereo", "rgbd").
+const char* to_string(SensorType sensor);
+
+}  // namespace stillslam
