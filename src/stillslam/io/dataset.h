@@ -1,0 +1,70 @@
+#pragma once
+// Random-access readers for image datasets (TUM RGB-D, EuRoC, KITTI odometry).
+// open_dataset() detects the layout from the folder contents.
+//
+// Bad frames: by default load() throws stillslam::Error naming the file (missing
+// image, unreadable or truncated PNG, 8-bit depth). With
+// DatasetOptions::skip_bad_frames, load() instead logs a warning, counts the
+// skip (skipped_frames()) and returns a frame with valid == false and the
+// reason in `error`; size() and indices never change, so timestamps stay
+// aligned with the frame list and callers simply ignore invalid frames.
+#include <atomic>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "stillslam/io/settings.h"
+
+namespace stillslam {
+
+struct SensorFrame {
+  std::size_t index = 0;
+  double timestamp = 0;  // seconds
+  cv::Mat color;  // 8UC3 BGR (for segmentation); for gray datasets a BGR copy of the gray image
+  cv::Mat gray;   // 8UC1, rectified for stereo
+  cv::Mat right;  // 8UC1 rectified right image (stereo), else empty
+  cv::Mat depth;  // CV_32F metres (RGB-D), 0 = invalid; else empty
+  std::string name;  // image file name, for messages
+  bool valid = true;   // false only when skip_bad_frames turned an error into a skip
+  std::string error;   // why the frame is invalid
+};
+
+struct DatasetOptions {
+  double max_dt = 0.02;  // TUM rgb/depth association tolerance, seconds
+  std::optional<std::filesystem::path> association_file;  // TUM: use this instead of rgb.txt/depth.txt
+  bool skip_bad_frames = false;
+};
+
+// Random access, read-only: concurrent load() calls on one dataset are safe.
+class Dataset {
+ public:
+  virtual ~Dataset() = default;
+  virtual std::string kind() const = 0;  // "tum", "euroc", "kitti"
+  virtual SensorType sensor() const = 0;
+  virtual std::size_t size() const = 0;
+  virtual double timestamp(std::size_t i) const = 0;
+  // Throws Error naming the file on a bad image (or flags the frame invalid
+  // with skip_bad_frames); throws Error for an index >= size().
+  virtual SensorFrame load(std::size_t i) const = 0;
+  // Calibration after rectification for stereo datasets (baseline, rectified
+  // intrinsics, no distortion); the SLAM system uses this instead of the raw
+  // settings for stereo.
+  virtual std::optional<StereoCalibration> rectified_stereo() const { return {}; }
+  // Frames turned into invalid frames by skip_bad_frames so far.
+  std::size_t skipped_frames() const { return skipped_.load(); }
+
+ protected:
+  void count_skip() const { ++skipped_; }
+
+ private:
+  mutable std::atomic<std::size_t> skipped_{0};
+};
+
+std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const Settings& settings,
+                                      const DatasetOptions& options = {});
+
+}  // namespace stillslam
