@@ -9,6 +9,9 @@ struct OrbOptions {
   int n_levels = 8;          // ORBextractor.nLevels
   int ini_th_fast = 20;      // ORBextractor.iniThFAST
   int min_th_fast = 7;       // ORBextractor.minThFAST
+  // Side of the square cells (level pixels) in which FAST runs with its own
+  // threshold fallback; small cells let weakly textured regions contribute.
+  int fast_cell_size = 30;
 };
 
 }  // namespace stillslam

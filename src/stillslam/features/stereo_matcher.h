@@ -1,0 +1,47 @@
+#pragma once
+// Left-right feature matching for a rectified stereo pair (ORB-SLAM paper,
+// section on stereo keypoints): for every left keypoint find the best right
+// descriptor in the epipolar band and disparity range, refine by SAD patch
+// correlation on the keypoint's pyramid level with a parabola sub-pixel fit,
+// then reject outliers whose SAD is far above the median.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "stillslam/features/orb_features.h"
+#include "stillslam/features/scale_pyramid.h"
+
+namespace stillslam {
+
+struct StereoMatchOptions {
+  int max_descriptor_distance = 75;  // Hamming; ORB-SLAM's (TH_HIGH + TH_LOW) / 2
+  int patch_half_size = 5;           // SAD window is (2w+1)^2 on the level image
+  int search_window = 5;             // +- level pixels searched around the descriptor match
+  float row_band = 2.f;              // epipolar band half-height at level 0, times scale[level]
+  float min_disparity = 0.f;         // pixels at level 0
+  float max_disparity = -1.f;        // pixels; < 0 means fx (depth >= baseline)
+  float sad_outlier_factor = 2.1f;   // reject SAD > factor * median SAD (1.5 * 1.4)
+  bool subpixel = true;              // parabola fit (false: integer SAD minimum only)
+};
+
+// For each left keypoint: u_right (level-0 pixels, < 0 if none) and depth
+// (metres, < 0 if none).
+struct StereoMatches {
+  std::vector<float> u_right, depth;
+  int num_matches = 0;
+};
+
+// fx: rectified focal length (pixels); bf: baseline * fx (metres * pixels).
+StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& left_pyramid,
+                           const OrbFeatures& right, const std::vector<cv::Mat>& right_pyramid,
+                           const ScalePyramid& pyramid, double fx, double bf,
+                           const StereoMatchOptions& options = {});
+
+// RGB-D: depth per keypoint read at the raw (distorted) keypoint position from
+// a CV_32F depth image in metres (or CV_16U with `depth_scale` units per
+// metre), and the virtual right coordinate u_r = u_undistorted - bf / depth.
+// Invalid / non-positive depths give -1. `undistorted` may equal `raw`.
+StereoMatches stereo_from_depth(const std::vector<cv::KeyPoint>& raw,
+                                const std::vector<cv::KeyPoint>& undistorted,
+                                const cv::Mat& depth, double bf, double depth_scale = 1.0);
+
+}  // namespace stillslam
