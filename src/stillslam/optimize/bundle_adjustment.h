@@ -1,0 +1,69 @@
+#pragma once
+// Bundle adjustment over plain structs (map/ converts its keyframes and map
+// points): local BA now, global BA later (same function, all keyframes).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "stillslam/geometry/pinhole_camera.h"
+#include "stillslam/optimize/observation_options.h"
+
+namespace stillslam {
+
+struct BaKeyframe {
+  std::uint64_t id = 0;  // caller's id, carried through untouched
+  Eigen::Isometry3d T_cam_world = Eigen::Isometry3d::Identity();
+  bool fixed = false;  // held constant (e.g. covisible keyframes outside the local window)
+};
+
+struct BaPoint {
+  std::uint64_t id = 0;
+  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
+};
+
+struct BaObservation {
+  std::size_t keyframe = 0;  // index into the keyframe vector
+  std::size_t point = 0;     // index into the point vector
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // undistorted
+  double u_right = -1;    // >= 0: stereo/RGB-D observation
+  double inv_sigma2 = 1;
+};
+
+enum class BaLinearSolver { DenseSchur, SparseSchur, Auto };
+
+struct BundleAdjustmentOptions {
+  // Levenberg-Marquardt iterations of the first (robust) pass.
+  int iterations = 10;
+  // After the first pass: flag observations above chi2 (or behind the
+  // camera) as outliers, then run outlier_rounds more passes without them and
+  // without Huber, re-classifying after each (0 = single pass).
+  int outlier_rounds = 1;
+  int iterations_after_outliers = 10;
+  double chi2_mono = kChi2Mono95;
+  double chi2_stereo = kChi2Stereo95;
+  bool huber = true;
+  int num_threads = 1;
+  BaLinearSolver linear_solver = BaLinearSolver::Auto;  // Auto: dense Schur for small windows
+  const std::atomic<bool>* abort = nullptr;  // stop early when set (checked every iteration)
+};
+
+struct BundleAdjustmentResult {
+  std::vector<Eigen::Isometry3d> T_cam_world;  // per keyframe (fixed ones unchanged)
+  std::vector<Eigen::Vector3d> points;         // per point
+  std::vector<bool> observation_inlier;        // per observation, after the last classification
+  double initial_cost = 0;  // 0.5 * sum of squared whitened errors (no robust loss)
+  double final_cost = 0;    // same measure, inliers only
+  bool aborted = false;
+};
+
+// Throws stillslam::Error when an observation indexes outside the vectors.
+// Points without observations are returned unchanged.
+BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<BaKeyframe> keyframes,
+                                     std::vector<BaPoint> points,
+                                     const std::vector<BaObservation>& observations,
+                                     const BundleAdjustmentOptions& options = {});
+
+}  // namespace stillslam
