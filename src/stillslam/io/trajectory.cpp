@@ -1,0 +1,361 @@
+#include "stillslam/io/trajectory.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "stillslam/core/error.h"
+
+namespace stillslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Above this a stamp can only be nanoseconds (1e12 s is 31,000 years).
+constexpr double kNanosecondStampThreshold = 1e12;
+
+struct Line {
+  std::size_t number = 0;  // 1-based, for messages
+  std::string text;
+};
+
+std::string trim(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return {};
+  const auto end = s.find_last_not_of(" \t\r\n");
+  return s.substr(begin, end - begin + 1);
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// Splits on blanks, and also on commas for csv (blanks around commas are padding).
+std::vector<std::string> split(const std::string& text, bool commas) {
+  std::vector<std::string> tokens;
+  std::string current;
+  for (char c : text) {
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || (commas && c == ',')) {
+      if (!current.empty()) tokens.push_back(current);
+      current.clear();
+    } else {
+      current.push_back(c);
+    }
+  }
+  if (!current.empty()) tokens.push_back(current);
+  return tokens;
+}
+
+std::optional<double> parse_double(const std::string& token) {
+  double value = 0;
+  const char* begin = token.data();
+  const char* end = begin + token.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// Nanosecond stamps ("1403715274312143104" or "1403715274312143104.000") are
+// split into whole seconds and the remainder so no digits are lost in a double.
+std::optional<double> parse_nanoseconds_as_seconds(const std::string& token) {
+  const auto dot = token.find('.');
+  const std::string integral = token.substr(0, dot);
+  bool fraction_is_zero = true;
+  if (dot != std::string::npos) {
+    for (std::size_t i = dot + 1; i < token.size(); ++i) {
+      if (token[i] != '0') fraction_is_zero = false;
+    }
+  }
+  std::int64_t ns = 0;
+  const auto [ptr, ec] = std::from_chars(integral.data(), integral.data() + integral.size(), ns);
+  if (ec == std::errc() && ptr == integral.data() + integral.size() && fraction_is_zero) {
+    return static_cast<double>(ns / 1'000'000'000) + static_cast<double>(ns % 1'000'000'000) * 1e-9;
+  }
+  const auto value = parse_double(token);
+  if (!value) return std::nullopt;
+  return *value * 1e-9;
+}
+
+[[noreturn]] void fail(const fs::path& path, std::size_t line, const std::string& what) {
+  throw Error("trajectory file " + path.string() + ", line " + std::to_string(line) + ": " + what);
+}
+
+std::vector<double> parse_numbers(const fs::path& path, const Line& line, const std::vector<std::string>& tokens,
+                                  std::size_t count, const std::string& layout) {
+  if (tokens.size() < count) {
+    fail(path, line.number,
+         "expected " + std::to_string(count) + " numbers (" + layout + "), found " + std::to_string(tokens.size()) +
+             "; fix the line or pass the right format explicitly");
+  }
+  std::vector<double> values(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto value = parse_double(tokens[i]);
+    if (!value) fail(path, line.number, "'" + tokens[i] + "' is not a finite number (" + layout + ")");
+    values[i] = *value;
+  }
+  return values;
+}
+
+std::vector<Line> read_lines(const fs::path& path) {
+  if (!fs::exists(path)) {
+    throw Error("trajectory file " + path.string() + " does not exist; check the path");
+  }
+  std::ifstream in(path);
+  if (!in) throw Error("trajectory file " + path.string() + " cannot be opened; check its permissions");
+  std::vector<Line> lines;
+  std::string text;
+  std::size_t number = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    lines.push_back({number, std::move(text)});
+  }
+  return lines;
+}
+
+bool is_comment_or_blank(const std::string& text) {
+  const std::string t = trim(text);
+  return t.empty() || t.front() == '#' || t.front() == '%';
+}
+
+bool starts_with_number(const std::string& text, bool commas) {
+  const auto tokens = split(trim(text), commas);
+  return !tokens.empty() && parse_double(tokens.front()).has_value();
+}
+
+double parse_stamp(const fs::path& path, const Line& line, const std::string& token) {
+  const auto value = parse_double(token);
+  if (!value) fail(path, line.number, "timestamp '" + token + "' is not a finite number");
+  if (std::abs(*value) > kNanosecondStampThreshold) return *parse_nanoseconds_as_seconds(token);
+  return *value;
+}
+
+Eigen::Quaterniond make_quaternion(const fs::path& path, const Line& line, double w, double x, double y, double z) {
+  Eigen::Quaterniond q(w, x, y, z);
+  const double norm = q.norm();
+  if (!(norm > 1e-6)) fail(path, line.number, "quaternion has zero length");
+  q.coeffs() /= norm;  // files store rounded quaternions; the pose must be a rotation
+  return q;
+}
+
+// A column header such as "# timestamp x y z qw qx qy qz" declares w-first.
+bool header_declares_w_first(const std::string& comment) {
+  const auto tokens = split(lower(trim(comment.substr(comment.find_first_not_of(" \t#%")))), true);
+  std::optional<std::size_t> w_index, x_index;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const std::string& t = tokens[i];
+    if (t == "qw" || t == "q_w" || t.rfind("q_rs_w", 0) == 0) w_index = i;
+    if (t == "qx" || t == "q_x" || t.rfind("q_rs_x", 0) == 0) x_index = i;
+  }
+  return w_index && x_index && *w_index < *x_index;
+}
+
+Trajectory parse_tum(const fs::path& path, const std::vector<Line>& lines) {
+  Trajectory trajectory;
+  bool w_first = false;
+  for (const Line& line : lines) {
+    if (is_comment_or_blank(line.text)) {
+      if (trajectory.empty() && trim(line.text).size() > 1 && header_declares_w_first(line.text)) w_first = true;
+      continue;
+    }
+    const auto tokens = split(line.text, false);
+    const auto v = parse_numbers(path, line, tokens, 8, w_first ? "TUM: t x y z qw qx qy qz" : "TUM: t x y z qx qy qz qw");
+    StampedPose pose;
+    pose.timestamp = parse_stamp(path, line, tokens[0]);
+    const Eigen::Quaterniond q = w_first ? make_quaternion(path, line, v[4], v[5], v[6], v[7])
+                                         : make_quaternion(path, line, v[7], v[4], v[5], v[6]);
+    pose.T_world_cam.linear() = q.toRotationMatrix();
+    pose.T_world_cam.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
+    trajectory.push_back(pose);
+  }
+  return trajectory;
+}
+
+Trajectory parse_kitti(const fs::path& path, const std::vector<Line>& lines) {
+  Trajectory trajectory;
+  for (const Line& line : lines) {
+    if (is_comment_or_blank(line.text)) continue;
+    const auto tokens = split(line.text, false);
+    if (tokens.size() != 12) {
+      fail(path, line.number, "expected 12 numbers (KITTI: row-major 3x4 [R|t]), found " +
+                                  std::to_string(tokens.size()));
+    }
+    const auto v = parse_numbers(path, line, tokens, 12, "KITTI: row-major 3x4 [R|t]");
+    Eigen::Matrix3d R;
+    R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+    // KITTI files round R to 6-9 digits; re-project onto SO(3) via a unit quaternion.
+    Eigen::Quaterniond q(R);
+    if (!(q.norm() > 1e-6)) fail(path, line.number, "rotation part is not a rotation matrix");
+    StampedPose pose;
+    pose.timestamp = static_cast<double>(trajectory.size());
+    pose.T_world_cam.linear() = q.normalized().toRotationMatrix();
+    pose.T_world_cam.translation() = Eigen::Vector3d(v[3], v[7], v[11]);
+    trajectory.push_back(pose);
+  }
+  return trajectory;
+}
+
+Trajectory parse_euroc(const fs::path& path, const std::vector<Line>& lines) {
+  Trajectory trajectory;
+  for (const Line& line : lines) {
+    if (is_comment_or_blank(line.text)) continue;
+    // A header without '#' ("timestamp,p_x,...") is allowed on the first data line only.
+    if (trajectory.empty() && !starts_with_number(line.text, true)) continue;
+    const auto tokens = split(line.text, true);
+    const auto v = parse_numbers(path, line, tokens, 8, "EuRoC csv: timestamp[ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z");
+    StampedPose pose;
+    const auto seconds = parse_nanoseconds_as_seconds(tokens[0]);
+    pose.timestamp = *seconds;
+    pose.T_world_cam.linear() = make_quaternion(path, line, v[4], v[5], v[6], v[7]).toRotationMatrix();
+    pose.T_world_cam.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
+    trajectory.push_back(pose);
+  }
+  return trajectory;
+}
+
+TrajectoryFormat detect_from_lines(const fs::path& path, const std::vector<Line>& lines) {
+  for (const Line& line : lines) {
+    if (is_comment_or_blank(line.text)) continue;
+    if (line.text.find(',') != std::string::npos) {
+      if (!starts_with_number(line.text, true)) continue;  // csv header without '#'
+      return TrajectoryFormat::Euroc;
+    }
+    const auto tokens = split(line.text, false);
+    if (tokens.size() == 12) return TrajectoryFormat::Kitti;
+    if (tokens.size() >= 8) return TrajectoryFormat::Tum;
+    fail(path, line.number,
+         "cannot tell the trajectory format: expected 8 numbers (TUM), 12 (KITTI) or a csv line (EuRoC), found " +
+             std::to_string(tokens.size()) + " fields");
+  }
+  throw Error("trajectory file " + path.string() + " contains no poses; check that the run wrote its trajectory");
+}
+
+std::string format_number(double value) {
+  // Shortest text that reads back to the identical double.
+  char buffer[64];
+  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return ec == std::errc() ? std::string(buffer, ptr) : std::string("nan");
+}
+
+}  // namespace
+
+TrajectoryFormat parse_trajectory_format(const std::string& name) {
+  const std::string n = lower(name);
+  if (n == "tum") return TrajectoryFormat::Tum;
+  if (n == "kitti") return TrajectoryFormat::Kitti;
+  if (n == "euroc") return TrajectoryFormat::Euroc;
+  throw Error("unknown trajectory format '" + name + "'; use tum, kitti or euroc");
+}
+
+std::string to_string(TrajectoryFormat format) {
+  switch (format) {
+    case TrajectoryFormat::Tum: return "tum";
+    case TrajectoryFormat::Kitti: return "kitti";
+    case TrajectoryFormat::Euroc: return "euroc";
+  }
+  return "tum";
+}
+
+TrajectoryFormat detect_trajectory_format(const fs::path& path) { return detect_from_lines(path, read_lines(path)); }
+
+Trajectory read_trajectory(const fs::path& path, std::optional<TrajectoryFormat> format) {
+  const auto lines = read_lines(path);
+  const TrajectoryFormat chosen = format ? *format : detect_from_lines(path, lines);
+  Trajectory trajectory;
+  switch (chosen) {
+    case TrajectoryFormat::Tum: trajectory = parse_tum(path, lines); break;
+    case TrajectoryFormat::Kitti: trajectory = parse_kitti(path, lines); break;
+    case TrajectoryFormat::Euroc: trajectory = parse_euroc(path, lines); break;
+  }
+  if (trajectory.empty()) {
+    throw Error("trajectory file " + path.string() + " contains no poses; check that the run wrote its trajectory");
+  }
+  return trajectory;
+}
+
+Trajectory read_kitti_trajectory(const fs::path& path, const fs::path& times_path) {
+  Trajectory trajectory = read_trajectory(path, TrajectoryFormat::Kitti);
+  std::vector<double> times;
+  for (const Line& line : read_lines(times_path)) {
+    if (is_comment_or_blank(line.text)) continue;
+    const auto tokens = split(line.text, false);
+    if (tokens.size() != 1) fail(times_path, line.number, "expected one timestamp per line");
+    times.push_back(parse_stamp(times_path, line, tokens[0]));
+  }
+  if (times.size() != trajectory.size()) {
+    throw Error("KITTI times file " + times_path.string() + " has " + std::to_string(times.size()) +
+                " stamps but " + path.string() + " has " + std::to_string(trajectory.size()) +
+                " poses; pass the times file of the same sequence");
+  }
+  for (std::size_t i = 0; i < times.size(); ++i) trajectory[i].timestamp = times[i];
+  return trajectory;
+}
+
+std::string format_trajectory_line(const StampedPose& pose, TrajectoryFormat format) {
+  const Eigen::Vector3d t = pose.T_world_cam.translation();
+  const Eigen::Matrix3d R = pose.T_world_cam.linear();
+  std::string line;
+  auto add = [&line](const std::string& field, const char* separator) {
+    if (!line.empty()) line += separator;
+    line += field;
+  };
+  switch (format) {
+    case TrajectoryFormat::Tum: {
+      const Eigen::Quaterniond q(R);
+      for (double v : {pose.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) add(format_number(v), " ");
+      break;
+    }
+    case TrajectoryFormat::Kitti:
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) add(format_number(R(r, c)), " ");
+        add(format_number(t[r]), " ");
+      }
+      break;
+    case TrajectoryFormat::Euroc: {
+      const Eigen::Quaterniond q(R);
+      add(std::to_string(std::llround(pose.timestamp * 1e9)), ",");
+      for (double v : {t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z()}) add(format_number(v), ",");
+      break;
+    }
+  }
+  return line;
+}
+
+namespace {
+constexpr const char* kEurocHeader = "#timestamp [ns],p_x [m],p_y [m],p_z [m],q_w [],q_x [],q_y [],q_z []";
+}
+
+void write_trajectory(const fs::path& path, const Trajectory& trajectory, TrajectoryFormat format) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write trajectory file " + path.string() + "; check that its folder exists and is writable");
+  if (format == TrajectoryFormat::Euroc) out << kEurocHeader << '\n';
+  for (const StampedPose& pose : trajectory) out << format_trajectory_line(pose, format) << '\n';
+  out.flush();
+  if (!out) throw Error("writing trajectory file " + path.string() + " failed; check free disk space");
+}
+
+TrajectoryWriter::TrajectoryWriter(const fs::path& path, TrajectoryFormat format)
+    : path_(path), format_(format), file_(std::fopen(path.c_str(), "w")) {
+  if (!file_) throw Error("cannot write trajectory file " + path.string() + "; check that its folder exists and is writable");
+  if (format_ == TrajectoryFormat::Euroc) {
+    std::fputs(kEurocHeader, file_.get());
+    std::fputc('\n', file_.get());
+    std::fflush(file_.get());
+  }
+}
+
+void TrajectoryWriter::write(const StampedPose& pose) {
+  const std::string line = format_trajectory_line(pose, format_) + '\n';
+  if (std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0) {
+    throw Error("writing trajectory file " + path_.string() + " failed; check free disk space");
+  }
+  ++count_;
+}
+
+}  // namespace stillslam
