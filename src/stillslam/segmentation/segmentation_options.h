@@ -13,7 +13,14 @@ struct SegmentationOptions {
   float nms_iou_threshold = 0.45f;            // Segmentation.nmsIouThreshold
   float mask_threshold = 0.5f;                // Segmentation.maskThreshold
   int mask_dilation = 0;                      // Segmentation.maskDilation, pixels
-  int threads = 1;                            // Segmentation.threads (OpenCV DNN threads)
+  // Segmentation.threads: OpenCV worker threads. OpenCV's thread count is process-wide, so
+  // YoloSegmenter applies it once at construction (cv::setNumThreads). 1 (default) runs the
+  // network serially on the calling thread, which on a 2-core machine leaves the other core
+  // to ORB extraction running in parallel; 0 leaves OpenCV's own setting untouched.
+  int threads = 1;
+  // Segmentation.masksForClassesOnly: compute instance masks only for `classes` (SLAM only
+  // needs the dynamic ones; saves ~1 ms per other detection). Other detections keep an empty mask.
+  bool masks_for_classes_only = false;
 };
 
 }  // namespace stillslam
