@@ -1,0 +1,120 @@
+#include "stillslam/io/yaml_reader.h"
+
+#include <cmath>
+
+#include <opencv2/core.hpp>
+
+#include "stillslam/core/error.h"
+
+namespace stillslam {
+
+std::optional<double> node_number(const cv::FileNode& node) {
+  if (node.isInt()) return static_cast<double>(static_cast<int>(node));
+  if (node.isReal()) return static_cast<double>(node);
+  return std::nullopt;
+}
+
+YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw Error(file.string() + ": settings file not found (check the path given to --config)");
+  }
+  try {
+    storage_.open(file.string(), cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
+  } catch (const cv::Exception& e) {
+    throw Error(file.string() + ": not a valid OpenCV YAML file (it must start with '%YAML:1.0'; " +
+                e.err + ")");
+  }
+  if (!storage_.isOpened()) {
+    throw Error(file.string() + ": cannot be read as OpenCV YAML (it must start with '%YAML:1.0')");
+  }
+}
+
+bool YamlReader::has(const std::string& key) const { return !storage_[key].isNone(); }
+
+std::vector<std::string> YamlReader::keys() const {
+  std::vector<std::string> out;
+  const cv::FileNode root = storage_.root();
+  if (!root.isMap()) return out;
+  for (auto it = root.begin(); it != root.end(); ++it) out.push_back((*it).name());
+  return out;
+}
+
+void YamlReader::fail(const std::string& key, const std::string& message) const {
+  throw Error(file_.string() + ": key '" + key + "' " + message);
+}
+
+std::optional<double> YamlReader::optional_number(const std::string& key) const {
+  const cv::FileNode n = storage_[key];
+  if (n.isNone()) return std::nullopt;
+  const auto value = node_number(n);
+  if (!value || !std::isfinite(*value)) fail(key, "must be a number");
+  return value;
+}
+
+double YamlReader::number(const std::string& key) const {
+  const auto value = optional_number(key);
+  if (!value) fail(key, "is missing (required)");
+  return *value;
+}
+
+std::optional<int> YamlReader::optional_integer(const std::string& key) const {
+  const auto value = optional_number(key);
+  if (!value) return std::nullopt;
+  if (std::round(*value) != *value || std::abs(*value) > 2e9) fail(key, "must be an integer");
+  return static_cast<int>(*value);
+}
+
+int YamlReader::integer(const std::string& key) const {
+  const auto value = optional_integer(key);
+  if (!value) fail(key, "is missing (required)");
+  return *value;
+}
+
+std::optional<std::string> YamlReader::optional_string(const std::string& key) const {
+  const cv::FileNode n = storage_[key];
+  if (n.isNone()) return std::nullopt;
+  if (!n.isString()) fail(key, "must be a string");
+  return static_cast<std::string>(n);
+}
+
+std::optional<std::vector<double>> YamlReader::optional_numbers(const std::string& key) const {
+  const cv::FileNode n = storage_[key];
+  if (n.isNone()) return std::nullopt;
+  if (!n.isSeq()) fail(key, "must be a sequence of numbers like [1.0, 2.0]");
+  std::vector<double> out;
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const auto value = node_number(*it);
+    if (!value) fail(key, "must contain only numbers");
+    out.push_back(*value);
+  }
+  return out;
+}
+
+std::optional<Eigen::MatrixXd> YamlReader::optional_matrix(const std::string& key) const {
+  const cv::FileNode n = storage_[key];
+  if (n.isNone()) return std::nullopt;
+  if (!n.isMap()) fail(key, "must be a matrix (rows, cols, data)");
+  const auto rows = node_number(n["rows"]);
+  const auto cols = node_number(n["cols"]);
+  const cv::FileNode data = n["data"];
+  if (!rows || !cols || *rows < 1 || *cols < 1 || !data.isSeq()) {
+    fail(key, "must be a matrix with positive 'rows', 'cols' and a 'data' sequence");
+  }
+  const auto r = static_cast<int>(*rows);
+  const auto c = static_cast<int>(*cols);
+  if (static_cast<int>(data.size()) != r * c) {
+    fail(key, "has " + std::to_string(data.size()) + " data values but rows*cols = " +
+                  std::to_string(r * c));
+  }
+  Eigen::MatrixXd m(r, c);
+  int i = 0;
+  for (auto it = data.begin(); it != data.end(); ++it, ++i) {
+    const auto value = node_number(*it);
+    if (!value) fail(key, "data must contain only numbers");
+    m(i / c, i % c) = *value;  // row-major, as OpenCV writes it
+  }
+  return m;
+}
+
+}  // namespace stillslam
