@@ -1,0 +1,135 @@
+#include "stillslam/eval/association.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <tuple>
+
+#include "stillslam/core/error.h"
+
+namespace stillslam {
+namespace {
+
+// Index of the last occurrence of each distinct stamp, sorted by stamp.
+std::vector<std::size_t> unique_sorted_last(const std::vector<double>& stamps) {
+  std::vector<std::size_t> order(stamps.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return stamps[a] < stamps[b]; });
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k + 1 < order.size() && stamps[order[k + 1]] == stamps[order[k]]) continue;  // a later duplicate wins
+    kept.push_back(order[k]);
+  }
+  return kept;
+}
+
+std::vector<IndexPair> associate_greedy(const std::vector<double>& gt, const std::vector<double>& est,
+                                        double max_dt, double offset) {
+  const auto gt_ids = unique_sorted_last(gt);
+  const auto est_ids = unique_sorted_last(est);
+  std::vector<double> est_shifted(est_ids.size());
+  for (std::size_t k = 0; k < est_ids.size(); ++k) est_shifted[k] = est[est_ids[k]] + offset;
+
+  // Candidates (|dt|, gt stamp, est stamp) exactly as associate.py sorts its tuples.
+  struct Candidate {
+    double dt;
+    double gt_stamp;
+    double est_stamp;
+    std::size_t gt_k;
+    std::size_t est_k;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t g = 0; g < gt_ids.size(); ++g) {
+    const double a = gt[gt_ids[g]];
+    auto it = std::lower_bound(est_shifted.begin(), est_shifted.end(), a - max_dt);
+    for (; it != est_shifted.end() && *it <= a + max_dt; ++it) {
+      const std::size_t e = static_cast<std::size_t>(it - est_shifted.begin());
+      const double dt = std::abs(a - *it);
+      if (dt < max_dt) candidates.push_back({dt, a, est[est_ids[e]], g, e});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.dt, x.gt_stamp, x.est_stamp) < std::tie(y.dt, y.gt_stamp, y.est_stamp);
+  });
+  std::vector<bool> gt_used(gt_ids.size(), false), est_used(est_ids.size(), false);
+  std::vector<IndexPair> pairs;
+  for (const Candidate& c : candidates) {
+    if (gt_used[c.gt_k] || est_used[c.est_k]) continue;
+    gt_used[c.gt_k] = est_used[c.est_k] = true;
+    pairs.push_back({gt_ids[c.gt_k], est_ids[c.est_k]});
+  }
+  std::sort(pairs.begin(), pairs.end(), [&](const IndexPair& x, const IndexPair& y) {
+    return std::tie(gt[x.gt], est[x.est]) < std::tie(gt[y.gt], est[y.est]);
+  });
+  return pairs;
+}
+
+// For each of `short_stamps`, the first index of the minimum |dt| in `long_stamps`.
+std::vector<std::pair<std::size_t, std::size_t>> nearest_matches(const std::vector<double>& short_stamps,
+                                                                 const std::vector<double>& long_stamps,
+                                                                 double max_dt, double long_offset) {
+  std::vector<std::pair<std::size_t, std::size_t>> matches;
+  if (long_stamps.empty()) return matches;
+  // Sorted view of the long stamps; ties resolved to the smallest original index as argmin does.
+  std::vector<std::size_t> order(long_stamps.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return long_stamps[a] < long_stamps[b]; });
+  std::vector<double> sorted(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = long_stamps[order[k]] + long_offset;
+  for (std::size_t s = 0; s < short_stamps.size(); ++s) {
+    const double t = short_stamps[s];
+    const auto pos = static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), t) - sorted.begin());
+    double best_dt = std::numeric_limits<double>::infinity();
+    if (pos > 0) best_dt = std::abs(sorted[pos - 1] - t);
+    if (pos < sorted.size()) best_dt = std::min(best_dt, std::abs(sorted[pos] - t));
+    // Every stamp at exactly best_dt sits next to pos; keep the smallest original index.
+    std::size_t best = std::numeric_limits<std::size_t>::max();
+    for (std::size_t k = pos; k > 0 && std::abs(sorted[k - 1] - t) == best_dt; --k) best = std::min(best, order[k - 1]);
+    for (std::size_t k = pos; k < sorted.size() && std::abs(sorted[k] - t) == best_dt; ++k) best = std::min(best, order[k]);
+    if (best_dt <= max_dt) matches.emplace_back(s, best);
+  }
+  return matches;
+}
+
+std::vector<IndexPair> associate_nearest(const std::vector<double>& gt, const std::vector<double>& est,
+                                         double max_dt, double offset) {
+  std::vector<IndexPair> pairs;
+  const bool est_longer = est.size() > gt.size();
+  if (est_longer) {
+    for (const auto& [g, e] : nearest_matches(gt, est, max_dt, offset)) pairs.push_back({g, e});
+  } else {
+    std::vector<double> est_shifted(est);
+    for (double& t : est_shifted) t += offset;
+    for (const auto& [e, g] : nearest_matches(est_shifted, gt, max_dt, 0.0)) pairs.push_back({g, e});
+  }
+  std::stable_sort(pairs.begin(), pairs.end(), [&](const IndexPair& x, const IndexPair& y) { return gt[x.gt] < gt[y.gt]; });
+  return pairs;
+}
+
+}  // namespace
+
+AssociationMethod parse_association_method(const std::string& name) {
+  if (name == "tum" || name == "greedy") return AssociationMethod::Greedy;
+  if (name == "nearest" || name == "evo") return AssociationMethod::Nearest;
+  throw Error("unknown association method '" + name + "'; use tum (greedy, as TUM associate.py) or nearest (as evo)");
+}
+
+std::string to_string(AssociationMethod method) {
+  return method == AssociationMethod::Greedy ? "tum" : "nearest";
+}
+
+double AssociationOptions::effective_max_dt() const {
+  if (max_dt > 0) return max_dt;
+  return method == AssociationMethod::Greedy ? 0.02 : 0.01;
+}
+
+std::vector<IndexPair> associate(const std::vector<double>& gt_stamps, const std::vector<double>& est_stamps,
+                                 const AssociationOptions& options) {
+  const double max_dt = options.effective_max_dt();
+  if (options.method == AssociationMethod::Greedy) return associate_greedy(gt_stamps, est_stamps, max_dt, options.offset);
+  return associate_nearest(gt_stamps, est_stamps, max_dt, options.offset);
+}
+
+}  // namespace stillslam
