@@ -57,12 +57,15 @@ class PinholeCamera {
   // Undistorted image bounds (min/max x, y after undistorting the image
   // corners and edge midpoints); the full image when there is no distortion.
   cv::Rect2f undistorted_bounds() const { return bounds_; }
-  // Keypoints with undistorted pt (cv::undistortPoints with P = K); all other
+  // Keypoints with undistorted pt (cv::undistortPoints with P = K and
+  // undistort_criteria(); cv::fisheye for KannalaBrandt8); all other
   // keypoint fields are kept. A copy when there is no distortion.
   std::vector<cv::KeyPoint> undistort(const std::vector<cv::KeyPoint>& keypoints) const;
   // Undistort raw pixel coordinates.
   std::vector<cv::Point2f> undistort(const std::vector<cv::Point2f>& pixels) const;
   bool has_distortion() const;
+  // Iteration limits used for the pinhole model's undistortion.
+  static cv::TermCriteria undistort_criteria();
 
  private:
   CameraCalibration calibration_;
