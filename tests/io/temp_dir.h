@@ -6,13 +6,17 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace stillslam::test {
 
 class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("stillslam_io_") + info->test_suite_name() + "_" + info->name();
+    // The pid keeps concurrent runs (other build directories, ctest -j) apart.
+    std::string name = std::string("stillslam_io_") + std::to_string(::getpid()) + "_" +
+                       info->test_suite_name() + "_" + info->name();
     for (char& c : name) {
       if (c == '/') c = '_';
     }
