@@ -1,0 +1,116 @@
+// `stillslam eval`: compare an estimated trajectory with ground truth (ATE/APE
+// after alignment, RPE), as TUM's evaluate_ate/rpe and evo do. A thin wrapper
+// around eval/evaluate.h.
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include "commands.h"
+#include "stillslam/core/error.h"
+#include "stillslam/eval/evaluate.h"
+#include "stillslam/eval/evaluation_plots.h"
+#include "stillslam/eval/evaluation_report.h"
+#include "stillslam/io/trajectory.h"
+
+namespace stillslam::apps {
+namespace {
+
+struct EvalArgs {
+  std::string gt, est, gt_format, est_format, gt_times, est_times;
+  std::string align = "se3";
+  std::string association = "tum";
+  double max_dt = 0;
+  double offset = 0;
+  double rpe_delta = 1;
+  std::string rpe_unit = "frames";
+  bool rpe_all_pairs = false;
+  std::string json, plot;
+};
+
+Trajectory load(const std::string& path, const std::string& format, const std::string& times) {
+  if (!times.empty()) {
+    if (!format.empty() && parse_trajectory_format(format) != TrajectoryFormat::Kitti) {
+      throw Error("a times file (" + times + ") only applies to KITTI poses; drop it or use --*-format kitti");
+    }
+    return read_kitti_trajectory(path, times);
+  }
+  std::optional<TrajectoryFormat> chosen;
+  if (!format.empty()) chosen = parse_trajectory_format(format);
+  return read_trajectory(path, chosen);
+}
+
+std::string format_name(const std::string& path, const std::string& format) {
+  return format.empty() ? to_string(detect_trajectory_format(path)) : to_string(parse_trajectory_format(format));
+}
+
+void run_eval(const EvalArgs& args) {
+  EvaluationOptions options;
+  options.alignment = parse_alignment_type(args.align);
+  options.association.method = parse_association_method(args.association);
+  options.association.max_dt = args.max_dt;
+  options.association.offset = args.offset;
+  options.rpe.delta = args.rpe_delta;
+  options.rpe.unit = parse_delta_unit(args.rpe_unit);
+  options.rpe.all_pairs = args.rpe_all_pairs;
+
+  const Trajectory gt = load(args.gt, args.gt_format, args.gt_times);
+  const Trajectory est = load(args.est, args.est_format, args.est_times);
+  const EvaluationResult result = evaluate(gt, est, options);
+
+  std::cout << format_evaluation_table(result, options);
+  if (!args.json.empty()) {
+    nlohmann::json json = evaluation_to_json(result, options);
+    json["inputs"] = {{"gt", args.gt},
+                      {"est", args.est},
+                      {"gt_format", format_name(args.gt, args.gt_format)},
+                      {"est_format", format_name(args.est, args.est_format)}};
+    std::ofstream out(args.json);
+    out << json.dump(2) << '\n';
+    out.flush();
+    if (!out) throw Error("cannot write " + args.json + "; check that its folder exists and is writable");
+  }
+  if (!args.plot.empty()) {
+    const auto error_plot = write_evaluation_plots(args.plot, result);
+    spdlog::info("plots: {} and {}", args.plot, error_plot.string());
+  }
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  auto args = std::make_shared<EvalArgs>();
+  auto* cmd = app.add_subcommand("eval", "Evaluate a trajectory against ground truth (APE after alignment, RPE)");
+  cmd->add_option("--gt", args->gt, "Ground-truth trajectory (TUM, KITTI or EuRoC csv; format detected)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--est", args->est, "Estimated trajectory (TUM, KITTI or EuRoC csv; format detected)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--gt-format", args->gt_format, "Override the detected format: tum, kitti, euroc");
+  cmd->add_option("--est-format", args->est_format, "Override the detected format: tum, kitti, euroc");
+  cmd->add_option("--gt-times", args->gt_times, "Timestamps for KITTI ground truth (one per line)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--est-times", args->est_times, "Timestamps for a KITTI estimate (one per line)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--align", args->align, "se3 (rigid), sim3 (rigid + scale, monocular) or none")
+      ->capture_default_str();
+  cmd->add_option("--association", args->association,
+                  "tum: greedy unique matching as TUM associate.py; nearest: evo's nearest neighbour")
+      ->capture_default_str();
+  cmd->add_option("--max-dt", args->max_dt,
+                  "Largest stamp difference to associate, seconds (default 0.02 for tum, 0.01 for nearest)");
+  cmd->add_option("--offset", args->offset, "Seconds added to the estimate's stamps before association")
+      ->capture_default_str();
+  cmd->add_option("--rpe-delta", args->rpe_delta, "RPE step between compared poses")->capture_default_str();
+  cmd->add_option("--rpe-unit", args->rpe_unit, "Unit of --rpe-delta: frames, s or m (path travelled)")
+      ->capture_default_str();
+  cmd->add_flag("--rpe-all-pairs", args->rpe_all_pairs,
+                "Start an RPE pair at every pose instead of consecutive non-overlapping steps (evo default)");
+  cmd->add_option("--json", args->json, "Write the results as JSON to this file");
+  cmd->add_option("--plot", args->plot, "Write SVG plots: FILE (trajectory view) and FILE_error (APE over time)");
+  cmd->callback([args] { run_eval(*args); });
+}
+
+}  // namespace stillslam::apps

@@ -1,0 +1,21 @@
+#pragma once
+// Machine- and human-readable summaries of an EvaluationResult.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "stillslam/eval/evaluate.h"
+
+namespace stillslam {
+
+nlohmann::json to_json(const ErrorStatistics& stats);
+
+// Keys: pairs, gt_poses, est_poses, ape{rmse,mean,median,std,min,max,count},
+// rpe_trans{...} (m), rpe_rot{...} (deg), rpe{delta,unit,all_pairs,pairs},
+// alignment{type,scale,rotation (row-major 3x3),translation},
+// association{method,max_dt,offset}.
+nlohmann::json evaluation_to_json(const EvaluationResult& result, const EvaluationOptions& options);
+
+// A fixed-width table of the statistics, for the terminal.
+std::string format_evaluation_table(const EvaluationResult& result, const EvaluationOptions& options);
+
+}  // namespace stillslam
