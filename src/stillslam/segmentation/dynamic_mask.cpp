@@ -30,9 +30,13 @@ cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vect
     }
   }
   if (dilation_px > 0) {
-    const cv::Mat kernel =
-        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * dilation_px + 1, 2 * dilation_px + 1));
-    cv::dilate(mask, mask, kernel);
+    // A true disc (OpenCV's MORPH_ELLIPSE is not one): every pixel within dilation_px of the mask.
+    const int r = dilation_px;
+    cv::Mat1b disc(2 * r + 1, 2 * r + 1, uchar{0});
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (dx * dx + dy * dy <= r * r) disc(dy + r, dx + r) = 1;
+    cv::dilate(mask, mask, disc);
   }
   return mask;
 }

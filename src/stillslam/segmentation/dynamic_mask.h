@@ -10,8 +10,8 @@
 namespace stillslam {
 
 // Union (255) of the masks of detections whose class is in dynamic_class_ids,
-// grown by dilation_px pixels (elliptical structuring element of radius dilation_px)
-// so that keypoints on the blurry border of a moving object are removed too.
+// grown by dilation_px pixels (every pixel within Euclidean distance dilation_px of
+// a mask pixel) so that keypoints on the blurry border of a moving object go too.
 // Detections without a mask contribute their box. Size must be the frame size.
 cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vector<int>& dynamic_class_ids,
                        cv::Size size, int dilation_px);

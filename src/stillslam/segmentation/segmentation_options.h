@@ -21,6 +21,9 @@ struct SegmentationOptions {
   // Segmentation.masksForClassesOnly: compute instance masks only for `classes` (SLAM only
   // needs the dynamic ones; saves ~1 ms per other detection). Other detections keep an empty mask.
   bool masks_for_classes_only = false;
+  // Segmentation.agnosticNms: let a box suppress overlapping boxes of any class (the
+  // default is class-aware NMS, so a "truck" box over a "bus" survives).
+  bool agnostic_nms = false;
 };
 
 }  // namespace stillslam

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "stillslam/core/error.h"
-#include "stillslam/segmentation/class_aware_nms.h"
+#include "stillslam/segmentation/nms.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/onnx_input_shape.h"
 
@@ -146,7 +146,9 @@ std::vector<Detection> YoloSegmenter::segment(const cv::Mat& image) {
     rows.push_back(r);
   }
   const std::vector<int> keep =
-      class_aware_nms(boxes, scores, class_ids, options_.score_threshold, options_.nms_iou_threshold);
+      options_.agnostic_nms
+          ? agnostic_nms(boxes, scores, options_.score_threshold, options_.nms_iou_threshold)
+          : class_aware_nms(boxes, scores, class_ids, options_.score_threshold, options_.nms_iou_threshold);
 
   std::vector<Detection> detections;
   detections.reserve(keep.size());

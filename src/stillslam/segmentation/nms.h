@@ -12,4 +12,8 @@ namespace stillslam {
 std::vector<int> class_aware_nms(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
                                  const std::vector<int>& class_ids, float score_threshold, float iou_threshold);
 
+// Plain NMS over all boxes regardless of class (cv::dnn::NMSBoxes); highest score first.
+std::vector<int> agnostic_nms(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
+                              float score_threshold, float iou_threshold);
+
 }  // namespace stillslam

@@ -1,4 +1,4 @@
-#include "stillslam/segmentation/class_aware_nms.h"
+#include "stillslam/segmentation/nms.h"
 
 #include <opencv2/dnn.hpp>
 
@@ -19,6 +19,13 @@ std::vector<int> class_aware_nms(const std::vector<cv::Rect2d>& boxes, const std
   }
   std::vector<int> keep;
   cv::dnn::NMSBoxes(shifted, scores, score_threshold, iou_threshold, keep);
+  return keep;
+}
+
+std::vector<int> agnostic_nms(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
+                              float score_threshold, float iou_threshold) {
+  std::vector<int> keep;
+  if (!boxes.empty()) cv::dnn::NMSBoxes(boxes, scores, score_threshold, iou_threshold, keep);
   return keep;
 }
 

@@ -1,0 +1,206 @@
+// Segmentation benchmark: latency per model input size, accuracy of the smaller
+// inputs against the 480x640 model, and ORB extraction overlapped with
+// segmentation (SegmentationWorker) versus run one after the other.
+//
+//   build/bench/bench_segmentation [--runs N] [--threads T] [--frames F] [--source REPO_DIR]
+//
+// Reads the models in models/ and, when present, ../shared/models/yolo-seg
+// (REPO_DIR defaults to the checkout this file was compiled from).
+// Wall-clock numbers on a shared machine: compare them within one run.
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "stillslam/core/stopwatch.h"
+#include "stillslam/segmentation/dynamic_mask.h"
+#include "stillslam/segmentation/segmentation_worker.h"
+#include "stillslam/segmentation/yolo_segmenter.h"
+
+namespace fs = std::filesystem;
+using namespace stillslam;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double l = 0;
+  in >> l;
+  return l;
+}
+
+SegmentationOptions options_for(const std::string& model, int threads) {
+  SegmentationOptions o;
+  o.model_path = model;
+  o.threads = threads;
+  return o;
+}
+
+// Person masks of a and b matched greedily by IoU; returns the mean IoU over the persons of b
+// (a person of b without a match counts 0).
+double person_mask_iou(const std::vector<Detection>& a, const std::vector<Detection>& b) {
+  std::vector<bool> used(a.size(), false);
+  double sum = 0;
+  int n = 0;
+  for (const auto& db : b) {
+    if (db.class_id != 0) continue;
+    ++n;
+    double best = 0;
+    std::size_t best_i = a.size();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (used[i] || a[i].class_id != 0) continue;
+      const double inter = cv::countNonZero(a[i].mask & db.mask);
+      const double uni = cv::countNonZero(a[i].mask | db.mask);
+      if (uni > 0 && inter / uni > best) best = inter / uni, best_i = i;
+    }
+    if (best_i < a.size()) used[best_i] = true;
+    sum += best;
+  }
+  return n ? sum / n : 0.0;
+}
+
+int count_class(const std::vector<Detection>& d, int id) {
+  return static_cast<int>(std::count_if(d.begin(), d.end(), [&](const Detection& x) { return x.class_id == id; }));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 20;
+  int threads = 2;
+  int frames = 20;
+  std::string src = fs::path(__FILE__).parent_path().parent_path().string();
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--runs") runs = std::stoi(argv[i + 1]);
+    if (a == "--threads") threads = std::stoi(argv[i + 1]);
+    if (a == "--frames") frames = std::stoi(argv[i + 1]);
+    if (a == "--source") src = argv[i + 1];
+  }
+  const std::string shared = src + "/../shared";
+  const std::string bus_path = src + "/tests/segmentation/data/bus.jpg";
+  const cv::Mat bus = cv::imread(bus_path);
+  const cv::Mat busstop = cv::imread(shared + "/images/busstop.jpg");
+  if (bus.empty()) {
+    std::fprintf(stderr, "cannot read %s\n", bus_path.c_str());
+    return 1;
+  }
+  std::printf("load average at start: %.2f, OpenCV threads: %d\n", load_average(), threads);
+
+  // 1. Latency and accuracy per model.
+  const std::string reference_model = shared + "/models/yolo-seg/yolo11n-seg_480x640.onnx";
+  std::vector<std::string> models{src + "/models/yolo11n-seg_384x512.onnx"};
+  for (const char* f : {"yolo11n-seg_480x640.onnx", "yolo11n-seg_384x512.onnx", "yolo11n-seg_288x384.onnx",
+                        "yolov8n-seg_480x640.onnx"})
+    if (fs::exists(shared + "/models/yolo-seg/" + f)) models.push_back(shared + "/models/yolo-seg/" + f);
+  std::vector<Detection> ref_bus, ref_busstop;
+  if (fs::exists(reference_model)) {
+    YoloSegmenter ref(options_for(reference_model, threads));
+    ref_bus = ref.segment(bus);
+    if (!busstop.empty()) ref_busstop = ref.segment(busstop);
+  }
+  const cv::Mat frame640 = [&] {
+    cv::Mat f;
+    cv::resize(busstop.empty() ? bus : busstop, f, cv::Size(640, 480), 0, 0, cv::INTER_AREA);
+    return f;
+  }();
+  std::printf("\n%-58s %7s %9s %9s %9s %8s %8s\n", "model", "input", "bus ms", "640x480", "persons", "IoU bus",
+              "IoU stop");
+  for (const auto& model : models) {
+    YoloSegmenter seg(options_for(model, threads));
+    std::vector<double> t_bus, t_640;
+    std::vector<Detection> d_bus;
+    for (int r = 0; r < runs + 2; ++r) {  // 2 warm-up runs
+      Stopwatch w;
+      d_bus = seg.segment(bus);
+      if (r >= 2) t_bus.push_back(w.elapsed_ms());
+      w.restart();
+      seg.segment(frame640);
+      if (r >= 2) t_640.push_back(w.elapsed_ms());
+    }
+    const auto d_stop = busstop.empty() ? std::vector<Detection>{} : seg.segment(busstop);
+    const cv::Size in = seg.input_size();
+    std::printf("%-58s %3dx%-3d %9.1f %9.1f %4d/%-4d %8.3f %8.3f\n", fs::path(model).filename().c_str(), in.height,
+                in.width, median(t_bus), median(t_640), count_class(d_bus, 0), count_class(d_stop, 0),
+                ref_bus.empty() ? 0.0 : person_mask_iou(d_bus, ref_bus),
+                ref_busstop.empty() ? 0.0 : person_mask_iou(d_stop, ref_busstop));
+  }
+  std::printf("(median of %d runs; IoU = mean person-mask IoU against yolo11n-seg 480x640, persons = bus/busstop)\n",
+              runs);
+
+  // 2. ORB extraction of frame k overlapped with segmentation of frame k.
+  std::vector<cv::Mat> seq;
+  for (int i = 0; i < frames; ++i) {
+    // A moving 640x480 window over the street photo so every frame differs.
+    const cv::Mat& src_img = busstop.empty() ? bus : busstop;
+    const int max_dx = std::max(0, src_img.cols - 960), max_dy = std::max(0, src_img.rows - 720);
+    const cv::Rect roi(max_dx * i / std::max(1, frames - 1), max_dy * i / std::max(1, frames - 1),
+                       std::min(960, src_img.cols), std::min(720, src_img.rows));
+    cv::Mat f;
+    cv::resize(src_img(roi), f, cv::Size(640, 480), 0, 0, cv::INTER_AREA);
+    seq.push_back(f);
+  }
+  const std::string model = src + "/models/yolo11n-seg_384x512.onnx";
+  const cv::Ptr<cv::ORB> orb = cv::ORB::create(1000);
+  auto extract = [&](const cv::Mat& bgr, std::vector<cv::KeyPoint>& kps, cv::Mat& desc) {
+    cv::Mat gray;
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+    orb->detectAndCompute(gray, cv::noArray(), kps, desc);
+  };
+  for (int net_threads : {1, threads}) {
+    YoloSegmenter direct(options_for(model, net_threads));
+    std::vector<double> seq_total, seq_orb, seq_seg;
+    std::size_t kept_seq = 0;
+    for (const auto& f : seq) {
+      Stopwatch total;
+      std::vector<cv::KeyPoint> kps;
+      cv::Mat desc;
+      Stopwatch w;
+      extract(f, kps, desc);
+      seq_orb.push_back(w.elapsed_ms());
+      w.restart();
+      const auto dets = direct.segment(f);
+      const cv::Mat1b mask = dynamic_mask(dets, {0}, f.size(), 3);
+      seq_seg.push_back(w.elapsed_ms());
+      kept_seq += keypoints_outside_mask(kps, mask).size();
+      seq_total.push_back(total.elapsed_ms());
+    }
+    SegmentationWorker worker(std::make_unique<YoloSegmenter>(options_for(model, net_threads)), {0}, 3);
+    std::vector<double> par_total, par_orb, par_wait;
+    std::size_t kept_par = 0;
+    for (const auto& f : seq) {
+      Stopwatch total;
+      auto future = worker.submit(f);
+      std::vector<cv::KeyPoint> kps;
+      cv::Mat desc;
+      Stopwatch w;
+      extract(f, kps, desc);
+      par_orb.push_back(w.elapsed_ms());
+      w.restart();
+      const SegmentationResult r = future.get();
+      par_wait.push_back(w.elapsed_ms());
+      kept_par += keypoints_outside_mask(kps, r.dynamic_mask).size();
+      par_total.push_back(total.elapsed_ms());
+    }
+    std::printf("\noverlap demo, %d frames 640x480, ORB 1000 features, yolo11n-seg 384x512, OpenCV threads %d:\n",
+                frames, net_threads);
+    std::printf("  sequential: per-frame total median %.1f ms (ORB %.1f + segmentation %.1f)\n", median(seq_total),
+                median(seq_orb), median(seq_seg));
+    std::printf("  overlapped: per-frame total median %.1f ms (ORB %.1f on caller, then waited %.1f for the mask)\n",
+                median(par_total), median(par_orb), median(par_wait));
+    std::printf("  static keypoints kept: %zu sequential, %zu overlapped (must be equal)\n", kept_seq, kept_par);
+  }
+  std::printf("\nload average at end: %.2f\n", load_average());
+  return 0;
+}
