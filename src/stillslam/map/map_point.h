@@ -1,0 +1,97 @@
+#pragma once
+// A 3D landmark observed by keyframes.
+//
+// Threading: map points, keyframes and the Map are NOT internally
+// synchronized. Every read or write of map structure happens while holding
+// Map::update_mutex() (tracking holds it for the map-facing part of a frame,
+// local mapping for each structural step); see map.h.
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+
+#include "stillslam/map/keyframe_order.h"
+
+namespace stillslam {
+
+class KeyFrame;
+struct ScalePyramid;
+
+class MapPoint : public std::enable_shared_from_this<MapPoint> {
+ public:
+  using Observations = std::map<KeyFrame*, std::size_t, KeyFrameIdLess>;
+
+  // `reference` is the keyframe that created the point (non-owning).
+  MapPoint(std::uint64_t id, const Eigen::Vector3d& position_world, KeyFrame* reference);
+
+  std::uint64_t id() const { return id_; }
+  std::uint64_t first_keyframe_id() const { return first_keyframe_id_; }
+  const Eigen::Vector3d& position() const { return position_; }
+  void set_position(const Eigen::Vector3d& p) { position_ = p; }
+  // Mean viewing direction (unit) from the observing keyframes.
+  const Eigen::Vector3d& normal() const { return normal_; }
+  // Representative descriptor (32 bytes).
+  const std::uint8_t* descriptor() const { return descriptor_.data(); }
+  // For points without observations (tracking's temporary odometry points).
+  void set_descriptor(const std::uint8_t* d) { std::copy(d, d + descriptor_.size(), descriptor_.begin()); }
+  // Scale-invariance distance range (ORB-SLAM: the point can be matched when
+  // seen from a distance inside [min, max]).
+  double min_distance() const { return 0.8 * min_distance_; }
+  double max_distance() const { return 1.2 * max_distance_; }
+  // Pyramid level at which the point should appear when seen from `distance`.
+  int predict_level(double distance, const ScalePyramid& pyramid) const;
+
+  // Observations: keyframe -> keypoint index. Stereo/RGB-D observations count
+  // twice in num_observations() (as ORB-SLAM), mono ones once.
+  const Observations& observations() const { return observations_; }
+  int num_observations() const { return num_observations_; }
+  bool is_observed_by(const KeyFrame* kf) const { return observations_.count(const_cast<KeyFrame*>(kf)) > 0; }
+  std::ptrdiff_t index_in(const KeyFrame* kf) const;
+  void add_observation(KeyFrame* kf, std::size_t index);
+  // Removes the observation; the point turns bad with <= 2 observations left.
+  void erase_observation(KeyFrame* kf);
+
+  // Tracking statistics: visible = predicted in a frame's frustum, found =
+  // actually matched there.
+  void increase_visible(int n = 1) { visible_ += n; }
+  void increase_found(int n = 1) { found_ += n; }
+  double found_ratio() const { return visible_ > 0 ? static_cast<double>(found_) / visible_ : 0.0; }
+  int visible() const { return visible_; }
+  int found() const { return found_; }
+
+  // Recomputes the representative descriptor: the observation descriptor with
+  // the least median Hamming distance to all others.
+  void compute_distinctive_descriptor();
+  // Recomputes normal and min/max distances from the observations.
+  void update_normal_and_depth(const ScalePyramid& pyramid);
+
+  bool is_bad() const { return bad_; }
+  // Removes the point from all observing keyframes.
+  void set_bad();
+  // Moves all observations to `other` (duplicate fusion); this point becomes bad.
+  void replace_with(const std::shared_ptr<MapPoint>& other);
+  // The point this one was fused into (follow the chain), or nullptr.
+  std::shared_ptr<MapPoint> replaced_by() const { return replaced_by_; }
+
+ private:
+  std::uint64_t id_;
+  std::uint64_t first_keyframe_id_;
+  Eigen::Vector3d position_;
+  Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
+  std::array<std::uint8_t, 32> descriptor_{};
+  double min_distance_ = 0, max_distance_ = 0;
+  Observations observations_;
+  int num_observations_ = 0;
+  KeyFrame* reference_;
+  int visible_ = 1, found_ = 1;
+  bool bad_ = false;
+  std::shared_ptr<MapPoint> replaced_by_;
+};
+
+using MapPointPtr = std::shared_ptr<MapPoint>;
+
+}  // namespace stillslam

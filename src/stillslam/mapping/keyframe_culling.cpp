@@ -1,0 +1,38 @@
+#include "stillslam/mapping/keyframe_culling.h"
+
+namespace stillslam {
+
+double keyframe_redundancy(const KeyFrame& kf, const KeyFrameCullingOptions& options) {
+  int points = 0, redundant = 0;
+  const double close_depth = kf.setup().close_depth;
+  for (std::size_t i = 0; i < kf.size(); ++i) {
+    const MapPointPtr& mp = kf.map_point(i);
+    if (!mp || mp->is_bad()) continue;
+    const float z = kf.depth(i);
+    if (z < 0 || z > close_depth) continue;
+    ++points;
+    if (mp->num_observations() <= options.min_observers) continue;
+    const int level = kf.keypoint(i).octave;
+    int observers = 0;
+    for (const auto& [other, idx] : mp->observations()) {
+      if (other == &kf) continue;
+      if (other->keypoint(idx).octave <= level + 1 && ++observers >= options.min_observers) break;
+    }
+    if (observers >= options.min_observers) ++redundant;
+  }
+  return points > 0 ? static_cast<double>(redundant) / points : 0.0;
+}
+
+int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options) {
+  int culled = 0;
+  for (KeyFrame* other : kf.covisibles()) {
+    if (other->id() == 0 || other->is_bad()) continue;
+    if (keyframe_redundancy(*other, options) > options.redundancy) {
+      map.erase_keyframe(map.keyframe(other->id()));
+      culled += other->is_bad() ? 1 : 0;
+    }
+  }
+  return culled;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,22 @@
+#pragma once
+// Redundant keyframe culling (ORB-SLAM, stereo/RGB-D rule): a covisible
+// keyframe of the new one is removed when more than 90% of its close map
+// points are seen by at least three other keyframes at the same or a finer
+// scale (pyramid level at most one above).
+#include "stillslam/map/map.h"
+
+namespace stillslam {
+
+struct KeyFrameCullingOptions {
+  double redundancy = 0.9;
+  int min_observers = 3;
+};
+
+// Caller holds the map's update mutex. Returns the number of culled keyframes.
+int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options = {});
+
+// Fraction of a keyframe's close points that are redundant by the rule above
+// (exposed for tests and diagnostics).
+double keyframe_redundancy(const KeyFrame& kf, const KeyFrameCullingOptions& options = {});
+
+}  // namespace stillslam

@@ -1,0 +1,109 @@
+#include "stillslam/mapping/local_bundle_adjustment.h"
+
+#include <map>
+#include <unordered_map>
+
+namespace stillslam {
+
+LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
+  LocalBundleAdjustmentProblem problem;
+  std::map<KeyFrame*, std::size_t, KeyFrameIdLess> kf_index;
+  auto add_keyframe = [&](KeyFrame* k, bool fixed) {
+    if (!kf_index.emplace(k, problem.keyframes.size()).second) return;
+    problem.keyframes.push_back(k->shared_from_this());
+    BaKeyframe b;
+    b.id = k->id();
+    b.T_cam_world = k->T_cam_world();
+    b.fixed = fixed || k->id() == 0;  // the first keyframe anchors the gauge
+    problem.ba_keyframes.push_back(b);
+  };
+  add_keyframe(&kf, false);
+  for (KeyFrame* n : kf.covisibles()) {
+    if (!n->is_bad()) add_keyframe(n, false);
+  }
+  const std::size_t num_local = problem.keyframes.size();
+
+  std::unordered_map<const MapPoint*, std::size_t> point_index;
+  for (std::size_t k = 0; k < num_local; ++k) {
+    for (const MapPointPtr& mp : problem.keyframes[k]->map_points()) {
+      if (!mp || mp->is_bad() || point_index.count(mp.get())) continue;
+      point_index.emplace(mp.get(), problem.points.size());
+      problem.points.push_back(mp);
+      problem.ba_points.push_back({mp->id(), mp->position()});
+    }
+  }
+  // Fixed keyframes: observe local points but are not in the window.
+  for (const MapPointPtr& mp : problem.points) {
+    for (const auto& [k, idx] : mp->observations()) {
+      if (!k->is_bad()) add_keyframe(k, true);
+    }
+  }
+  if (num_local == 1 || std::all_of(problem.ba_keyframes.begin(), problem.ba_keyframes.end(),
+                                    [](const BaKeyframe& b) { return !b.fixed; })) {
+    // Nothing fixed: fix the oldest keyframe of the window to remove the gauge freedom.
+    std::size_t oldest = 0;
+    for (std::size_t k = 1; k < problem.keyframes.size(); ++k) {
+      if (problem.keyframes[k]->id() < problem.keyframes[oldest]->id()) oldest = k;
+    }
+    problem.ba_keyframes[oldest].fixed = true;
+  }
+
+  const ScalePyramid& pyramid = kf.setup().pyramid;
+  for (std::size_t p = 0; p < problem.points.size(); ++p) {
+    for (const auto& [k, idx] : problem.points[p]->observations()) {
+      const auto it = kf_index.find(k);
+      if (it == kf_index.end()) continue;
+      BaObservation o;
+      o.keyframe = it->second;
+      o.point = p;
+      const cv::KeyPoint& kp = k->keypoint(idx);
+      o.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
+      o.u_right = k->u_right(idx);
+      o.inv_sigma2 = pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
+      problem.ba_observations.push_back(o);
+      problem.observation_index.push_back(idx);
+    }
+  }
+  return problem;
+}
+
+BundleAdjustmentResult solve_local_window(const PinholeCamera& camera, const LocalBundleAdjustmentProblem& problem,
+                                          const BundleAdjustmentOptions& options) {
+  return bundle_adjust(camera, problem.ba_keyframes, problem.ba_points, problem.ba_observations, options);
+}
+
+LocalBundleAdjustmentStats apply_local_window(const LocalBundleAdjustmentProblem& problem,
+                                              const BundleAdjustmentResult& result) {
+  LocalBundleAdjustmentStats stats;
+  stats.aborted = result.aborted;
+  stats.points = static_cast<int>(problem.points.size());
+  stats.observations = static_cast<int>(problem.ba_observations.size());
+  for (std::size_t o = 0; o < problem.ba_observations.size(); ++o) {
+    if (o < result.observation_inlier.size() && result.observation_inlier[o]) continue;
+    const BaObservation& obs = problem.ba_observations[o];
+    KeyFrame& k = *problem.keyframes[obs.keyframe];
+    const MapPointPtr& mp = problem.points[obs.point];
+    if (k.map_point(problem.observation_index[o]) == mp) {
+      k.erase_map_point(problem.observation_index[o]);
+      mp->erase_observation(&k);
+      ++stats.outliers;
+    }
+  }
+  for (std::size_t k = 0; k < problem.keyframes.size(); ++k) {
+    if (problem.ba_keyframes[k].fixed) {
+      ++stats.fixed_keyframes;
+      continue;
+    }
+    ++stats.keyframes;
+    if (!problem.keyframes[k]->is_bad()) problem.keyframes[k]->set_pose(result.T_cam_world[k]);
+  }
+  for (std::size_t p = 0; p < problem.points.size(); ++p) {
+    const MapPointPtr& mp = problem.points[p];
+    if (mp->is_bad()) continue;
+    mp->set_position(result.points[p]);
+    mp->update_normal_and_depth(problem.keyframes.front()->setup().pyramid);
+  }
+  return stats;
+}
+
+}  // namespace stillslam

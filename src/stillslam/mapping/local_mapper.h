@@ -1,0 +1,99 @@
+#pragma once
+// Local mapping: for each new keyframe — register it (observations,
+// covisibility), cull recent points, triangulate new points with neighbours,
+// fuse duplicates, run local BA, cull redundant keyframes.
+//
+// Threaded mode: a worker thread consumes a keyframe queue; tracking inserts
+// keyframes and can interrupt a running BA (abort flag) when it needs to hand
+// over another one. Synchronous mode (deterministic runs and tests): insert
+// only queues, and the owner calls process_pending() after each tracked frame,
+// outside the map lock.
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "stillslam/map/map.h"
+#include "stillslam/mapping/keyframe_culling.h"
+#include "stillslam/mapping/neighbour_fusion.h"
+#include "stillslam/mapping/point_culling.h"
+#include "stillslam/mapping/point_triangulation.h"
+#include "stillslam/optimize/bundle_adjustment.h"
+
+namespace stillslam {
+
+struct LocalMapperOptions {
+  bool threaded = true;
+  PointCullingOptions point_culling;
+  PointTriangulationOptions triangulation;
+  FusionOptions fusion;
+  KeyFrameCullingOptions keyframe_culling;
+  BundleAdjustmentOptions bundle_adjustment = default_bundle_adjustment();
+  bool enable_bundle_adjustment = true;
+  bool enable_keyframe_culling = true;
+
+  static BundleAdjustmentOptions default_bundle_adjustment() {
+    BundleAdjustmentOptions o;
+    o.iterations = 5;  // ORB-SLAM: 5 robust iterations, then 10 without outliers
+    o.outlier_rounds = 1;
+    o.iterations_after_outliers = 10;
+    return o;
+  }
+};
+
+struct LocalMapperStats {
+  int keyframes = 0;
+  int points_created = 0;
+  int points_culled = 0;
+  int keyframes_culled = 0;
+  int bundle_adjustments = 0;
+  int bundle_adjustments_aborted = 0;
+  double bundle_adjustment_ms = 0;  // total
+  double total_ms = 0;              // total processing time
+};
+
+class LocalMapper {
+ public:
+  LocalMapper(Map& map, LocalMapperOptions options);
+  ~LocalMapper();  // stop()
+  LocalMapper(const LocalMapper&) = delete;
+  LocalMapper& operator=(const LocalMapper&) = delete;
+
+  // Called by tracking (possibly while it holds the map lock).
+  void insert_keyframe(KeyFramePtr kf);
+  bool accepts_keyframes() const { return !options_.threaded || idle_.load(); }
+  std::size_t queued_keyframes() const;
+  void interrupt_bundle_adjustment() { abort_ba_ = true; }
+
+  // Synchronous mode: processes every queued keyframe now (no-op when threaded).
+  void process_pending();
+  // Waits until the queue is empty and the current keyframe is done.
+  void flush();
+  // Finishes the keyframe in progress, drops nothing queued (processes it), joins.
+  void stop();
+
+  LocalMapperStats stats() const;
+
+ private:
+  void run();
+  void process(const KeyFramePtr& kf);
+  bool has_new_keyframes() const;
+
+  Map& map_;
+  LocalMapperOptions options_;
+  mutable std::mutex queue_mutex_;
+  std::condition_variable queue_changed_;
+  std::deque<KeyFramePtr> queue_;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::atomic<bool> idle_{true};
+  std::atomic<bool> abort_ba_{false};
+  std::vector<MapPointPtr> recent_points_;
+  mutable std::mutex stats_mutex_;
+  LocalMapperStats stats_;
+  std::thread thread_;  // last: starts after the members above exist
+};
+
+}  // namespace stillslam

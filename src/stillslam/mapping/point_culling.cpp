@@ -1,0 +1,26 @@
+#include "stillslam/mapping/point_culling.h"
+
+namespace stillslam {
+
+int cull_recent_points(std::vector<MapPointPtr>& recent, std::uint64_t current_keyframe_id,
+                       const PointCullingOptions& options) {
+  int culled = 0;
+  std::vector<MapPointPtr> kept;
+  kept.reserve(recent.size());
+  for (MapPointPtr& mp : recent) {
+    if (mp->is_bad()) continue;
+    const std::uint64_t age = current_keyframe_id - mp->first_keyframe_id();
+    if (mp->found_ratio() < options.min_found_ratio ||
+        (age >= 2 && mp->num_observations() <= options.min_observations)) {
+      mp->set_bad();
+      ++culled;
+      continue;
+    }
+    if (age >= 3) continue;  // survived: no longer recent
+    kept.push_back(std::move(mp));
+  }
+  recent = std::move(kept);
+  return culled;
+}
+
+}  // namespace stillslam

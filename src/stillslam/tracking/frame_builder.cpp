@@ -1,0 +1,103 @@
+#include "stillslam/tracking/frame_builder.h"
+
+#include <future>
+#include <opencv2/imgproc.hpp>
+
+#include "stillslam/core/error.h"
+#include "stillslam/core/stopwatch.h"
+#include "stillslam/segmentation/dynamic_mask.h"
+
+namespace stillslam {
+
+namespace {
+
+OrbFeatures select(const OrbFeatures& features, const std::vector<std::size_t>& keep) {
+  OrbFeatures out;
+  out.keypoints.reserve(keep.size());
+  out.descriptors.create(static_cast<int>(keep.size()), features.descriptors.cols, features.descriptors.type());
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    out.keypoints.push_back(features.keypoints[keep[k]]);
+    features.descriptors.row(static_cast<int>(keep[k])).copyTo(out.descriptors.row(static_cast<int>(k)));
+  }
+  return out;
+}
+
+}  // namespace
+
+FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType sensor, const OrbOptions& orb,
+                           SegmentationWorker* segmentation, StereoMatchOptions stereo_options)
+    : setup_(std::move(setup)),
+      sensor_(sensor),
+      extractor_(orb),
+      segmentation_(segmentation),
+      stereo_options_(stereo_options) {}
+
+Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats) const {
+  Stopwatch total;
+  FrameBuildStats local;
+  FrameBuildStats& st = stats ? *stats : local;
+  st = FrameBuildStats{};
+  if (input.gray.empty()) throw Error("frame " + input.name + ": no grey image to extract features from");
+  const bool stereo = sensor_ == SensorType::Stereo;
+  if (stereo && input.right.empty()) throw Error("frame " + input.name + ": stereo sensor but no right image");
+  if (sensor_ == SensorType::Rgbd && input.depth.empty()) {
+    throw Error("frame " + input.name + ": RGB-D sensor but no depth image");
+  }
+
+  // 1. Segmentation starts first, on its own thread.
+  std::future<SegmentationResult> mask_future;
+  if (segmentation_ != nullptr) {
+    cv::Mat color = input.color;
+    if (color.empty()) cv::cvtColor(input.gray, color, cv::COLOR_GRAY2BGR);
+    mask_future = segmentation_->submit(color);
+  }
+
+  // 2. ORB on left (this thread) and right (second core) in parallel.
+  Stopwatch extraction;
+  std::vector<cv::Mat> left_pyramid, right_pyramid;
+  std::future<OrbFeatures> right_future;
+  if (stereo) {
+    right_future = std::async(std::launch::async, [&] { return extractor_.extract(input.right, &right_pyramid); });
+  }
+  OrbFeatures left = extractor_.extract(input.gray, stereo ? &left_pyramid : nullptr);
+  OrbFeatures right;
+  if (stereo) right = right_future.get();
+  st.extraction_ms = extraction.elapsed_ms();
+  st.keypoints_before = static_cast<int>(left.size());
+
+  // 3. Dynamic filter before anything else looks at the keypoints.
+  if (segmentation_ != nullptr) {
+    Stopwatch wait;
+    SegmentationResult seg = mask_future.get();
+    st.segmentation_wait_ms = wait.elapsed_ms();
+    st.segmentation_ms = seg.time_ms;
+    st.detections = static_cast<int>(seg.detections.size());
+    st.mask_coverage = seg.coverage;
+    if (!seg.dynamic_mask.empty()) left = select(left, keypoints_outside_mask(left.keypoints, seg.dynamic_mask));
+  }
+  st.keypoints_after = static_cast<int>(left.size());
+
+  // 4. Undistortion and depth association.
+  Stopwatch association;
+  std::vector<cv::KeyPoint> undistorted = setup_->camera.undistort(left.keypoints);
+  std::vector<float> u_right(left.size(), -1.f), depth(left.size(), -1.f);
+  if (stereo) {
+    StereoMatches m = match_stereo(left, left_pyramid, right, right_pyramid, setup_->pyramid, setup_->camera.fx(),
+                                   setup_->camera.bf(), stereo_options_);
+    u_right = std::move(m.u_right);
+    depth = std::move(m.depth);
+  } else if (sensor_ == SensorType::Rgbd) {
+    StereoMatches m = stereo_from_depth(left.keypoints, undistorted, input.depth, setup_->camera.bf());
+    u_right = std::move(m.u_right);
+    depth = std::move(m.depth);
+  }
+  st.association_ms = association.elapsed_ms();
+
+  Frame frame(frame_id, input.timestamp, setup_, std::move(left.keypoints), std::move(undistorted),
+              std::move(left.descriptors), std::move(u_right), std::move(depth));
+  st.keypoints_with_depth = frame.num_with_depth();
+  st.total_ms = total.elapsed_ms();
+  return frame;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,52 @@
+#pragma once
+// Turns a SensorFrame into a tracking Frame. Order matters and is the point of
+// the design: the colour image goes to the segmentation worker first, ORB runs
+// on the left (and right, in parallel) image meanwhile, then keypoints inside
+// the dynamic mask are DROPPED before stereo/depth association, so no later
+// stage ever sees a feature on a moving object. Without a worker the pipeline
+// is identical minus the mask.
+#include <cstdint>
+#include <memory>
+
+#include "stillslam/features/orb_extractor.h"
+#include "stillslam/features/stereo_matcher.h"
+#include "stillslam/io/dataset.h"
+#include "stillslam/map/frame.h"
+#include "stillslam/segmentation/segmentation_worker.h"
+
+namespace stillslam {
+
+struct FrameBuildStats {
+  int keypoints_before = 0;  // extracted on the left/colour image
+  int keypoints_after = 0;   // after the dynamic filter
+  int keypoints_with_depth = 0;
+  int detections = 0;        // all detections of the segmenter
+  double mask_coverage = 0;  // fraction of the image in the dynamic mask
+  double extraction_ms = 0;  // ORB (left and right in parallel)
+  double segmentation_ms = 0;       // segmenter time on its own thread
+  double segmentation_wait_ms = 0;  // time this thread waited for the mask
+  double association_ms = 0;        // stereo matching / depth lookup
+  double total_ms = 0;
+};
+
+class FrameBuilder {
+ public:
+  // `setup` must describe the undistorted (rectified for stereo) camera with
+  // its bf. `segmentation` may be null (no masks); it is not owned.
+  FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType sensor, const OrbOptions& orb,
+               SegmentationWorker* segmentation, StereoMatchOptions stereo_options = {});
+
+  // Throws stillslam::Error when the frame lacks the images the sensor needs.
+  Frame build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats) const;
+
+  bool segmentation_enabled() const { return segmentation_ != nullptr; }
+
+ private:
+  std::shared_ptr<const CameraSetup> setup_;
+  SensorType sensor_;
+  OrbExtractor extractor_;
+  SegmentationWorker* segmentation_;
+  StereoMatchOptions stereo_options_;
+};
+
+}  // namespace stillslam

@@ -1,0 +1,17 @@
+#pragma once
+// Motion-only BA of a frame against its matched map points: builds the
+// observations (stereo/RGB-D ones with the virtual right coordinate), runs
+// optimize_pose and writes back the pose and per-keypoint outlier flags.
+#include "stillslam/map/frame.h"
+#include "stillslam/optimize/pose_optimizer.h"
+
+namespace stillslam {
+
+// Returns the number of inlier observations. The frame must have a pose.
+int refine_pose(Frame& frame, const PoseOptimizerOptions& options = {});
+
+// Clears the slots of outlier matches (they are not map observations of this
+// frame) and returns how many inliers are real map points (>= 1 observation).
+int discard_outliers(Frame& frame);
+
+}  // namespace stillslam

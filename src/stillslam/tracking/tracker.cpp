@@ -1,0 +1,303 @@
+#include "stillslam/tracking/tracker.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_set>
+
+#include "stillslam/map/projection_search.h"
+#include "stillslam/tracking/local_map.h"
+#include "stillslam/tracking/pose_refinement.h"
+
+namespace stillslam {
+
+namespace {
+constexpr int kMinMotionMatches = 20;
+constexpr int kMinMotionInliers = 10;
+constexpr int kMinReferenceMatches = 15;
+constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides with map ids
+}  // namespace
+
+Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
+    : map_(map), options_(options), link_(std::move(link)) {}
+
+TrackingResult Tracker::track(Frame& frame) {
+  std::lock_guard<std::mutex> lock(map_.update_mutex());
+  TrackingResult result;
+  if (state_ == TrackingState::NotInitialized) {
+    if (!initialize(frame)) {
+      result.state = state_;
+      result.reason = "waiting for a frame with " + std::to_string(options_.init_min_keypoints) +
+                      " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")";
+      return result;
+    }
+    result.state = state_;
+    result.reason = "initialized";
+    result.new_keyframe = true;
+    result.inliers = frame.num_matches();
+    return result;
+  }
+
+  update_last_frame();
+  bool ok = false;
+  if (state_ == TrackingState::Ok) {
+    if (velocity_) ok = track_with_motion_model(frame, result);
+    if (!ok) ok = track_reference_keyframe(frame, result);
+  } else {
+    ok = track_while_lost(frame, result);
+  }
+  if (ok) ok = track_local_map(frame, result);
+
+  if (ok) {
+    if (state_ == TrackingState::Lost) {
+      was_lost_ = true;
+      last_lost_frame_id_ = frame.id();
+    }
+    state_ = TrackingState::Ok;
+    if (last_frame_.has_pose()) velocity_ = frame.T_cam_world() * last_frame_.T_cam_world().inverse();
+    if (need_new_keyframe(frame, result.inliers)) {
+      create_keyframe(frame);
+      result.new_keyframe = true;
+    }
+    // Outliers found in the final optimization do not carry over.
+    discard_outliers(frame);
+    if (!frame.reference_keyframe()) frame.set_reference_keyframe(reference_keyframe_);
+    reference_keyframe_ = frame.reference_keyframe();
+    T_last_ref_ = frame.T_cam_world() * reference_keyframe_->T_world_cam();
+    last_frame_ = frame;
+  } else {
+    state_ = TrackingState::Lost;
+    velocity_.reset();
+    if (result.reason.empty()) result.reason = "lost";
+  }
+  result.state = state_;
+  return result;
+}
+
+bool Tracker::initialize(Frame& frame) {
+  if (frame.num_with_depth() < options_.init_min_keypoints) return false;
+  frame.set_pose(Eigen::Isometry3d::Identity());
+  KeyFramePtr kf = map_.create_keyframe(frame);
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const auto p = kf->unproject(i);
+    if (!p) continue;
+    MapPointPtr mp = map_.create_map_point(*p, kf.get());
+    mp->add_observation(kf.get(), i);
+    kf->set_map_point(i, mp);
+    mp->compute_distinctive_descriptor();
+    mp->update_normal_and_depth(frame.setup().pyramid);
+    frame.set_map_point(i, mp);
+  }
+  frame.set_reference_keyframe(kf);
+  reference_keyframe_ = kf;
+  last_keyframe_ = kf;
+  last_keyframe_frame_id_ = frame.id();
+  T_last_ref_ = Eigen::Isometry3d::Identity();
+  last_frame_ = frame;
+  state_ = TrackingState::Ok;
+  if (link_.insert_keyframe) link_.insert_keyframe(kf);
+  return true;
+}
+
+// Re-anchors the last frame on its reference keyframe (which local BA may
+// have moved) and gives it temporary "visual odometry" points from its close
+// depths so the motion model has enough to match against (not added to the map).
+void Tracker::update_last_frame() {
+  if (!last_frame_.has_pose() || !reference_keyframe_) return;
+  last_frame_.set_pose(T_last_ref_ * reference_keyframe_->T_cam_world_resolved());
+  std::vector<std::pair<float, std::size_t>> by_depth;
+  for (std::size_t i = 0; i < last_frame_.size(); ++i) {
+    if (last_frame_.depth(i) > 0) by_depth.emplace_back(last_frame_.depth(i), i);
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  int n = 0;
+  const double close_depth = last_frame_.setup().close_depth;
+  for (const auto& [z, i] : by_depth) {
+    const MapPointPtr& existing = last_frame_.map_point(i);
+    if (!existing || existing->num_observations() < 1) {
+      auto mp = std::make_shared<MapPoint>(kTemporaryPointIdBase + temporary_point_id_++,
+                                           *last_frame_.unproject(i), nullptr);
+      mp->set_descriptor(last_frame_.descriptor(i));
+      last_frame_.set_map_point(i, std::move(mp));
+      last_frame_.set_outlier(i, false);
+    }
+    ++n;
+    if (z > close_depth && n > options_.new_keyframe_points) break;
+  }
+}
+
+bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
+  frame.set_pose(*velocity_ * last_frame_.T_cam_world());
+  frame.clear_map_points();
+  int matches = search_by_projection(frame, last_frame_, options_.motion_search_radius);
+  if (matches < kMinMotionMatches) {
+    frame.clear_map_points();
+    matches = search_by_projection(frame, last_frame_, 2 * options_.motion_search_radius);
+  }
+  if (matches < kMinMotionMatches) {
+    result.reason = "motion model: " + std::to_string(matches) + " matches";
+    return false;
+  }
+  refine_pose(frame, options_.pose);
+  const int inliers = discard_outliers(frame);
+  if (inliers < kMinMotionInliers) {
+    result.reason = "motion model: " + std::to_string(inliers) + " inliers";
+    return false;
+  }
+  return true;
+}
+
+int Tracker::search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th) {
+  std::unordered_set<const MapPoint*> matched;
+  for (const auto& mp : frame.map_points()) {
+    if (mp) matched.insert(mp.get());
+  }
+  std::vector<ProjectedPoint> candidates;
+  for (const MapPointPtr& mp : points) {
+    if (mp->is_bad() || matched.count(mp.get())) continue;
+    auto projected = project_in_frustum(frame, mp);
+    if (!projected) continue;
+    mp->increase_visible();
+    candidates.push_back(std::move(*projected));
+  }
+  return search_by_projection(frame, candidates, th);
+}
+
+bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
+  // Without a vocabulary: project the reference keyframe's neighbourhood with
+  // the last pose and a wide window.
+  frame.set_pose(last_frame_.T_cam_world());
+  frame.clear_map_points();
+  const LocalMap local = build_local_map(frame, reference_keyframe_.get(), 10);
+  const int matches = search_points(frame, local.points, options_.reference_search_th);
+  if (matches < kMinReferenceMatches) {
+    result.reason = "reference keyframe: " + std::to_string(matches) + " matches";
+    return false;
+  }
+  refine_pose(frame, options_.pose);
+  const int inliers = discard_outliers(frame);
+  if (inliers < kMinMotionInliers) {
+    result.reason = "reference keyframe: " + std::to_string(inliers) + " inliers";
+    return false;
+  }
+  return true;
+}
+
+bool Tracker::track_while_lost(Frame& frame, TrackingResult& result) {
+  if (!last_frame_.has_pose()) return false;
+  frame.set_pose(last_frame_.T_cam_world());
+  frame.clear_map_points();
+  const LocalMap local = build_local_map(frame, last_keyframe_.get(), 20);
+  const int matches = search_points(frame, local.points, options_.lost_search_th);
+  if (matches < options_.min_local_map_inliers) {
+    result.reason = "lost: " + std::to_string(matches) + " matches in the last keyframes' local map";
+    return false;
+  }
+  refine_pose(frame, options_.pose);
+  const int inliers = discard_outliers(frame);
+  if (inliers < options_.min_local_map_inliers) {
+    result.reason = "lost: " + std::to_string(inliers) + " inliers in the last keyframes' local map";
+    return false;
+  }
+  return true;
+}
+
+bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
+  const LocalMap local = build_local_map(frame, last_keyframe_.get(), options_.max_local_keyframes);
+  if (local.reference != nullptr) {
+    frame.set_reference_keyframe(local.reference->shared_from_this());
+  }
+  for (const auto& mp : frame.map_points()) {
+    if (mp) mp->increase_visible();
+  }
+  const bool recovering = was_lost_ && frame.id() < last_lost_frame_id_ + 2;
+  search_points(frame, local.points, recovering ? 5.f : options_.local_map_search_th);
+  result.matches = frame.num_matches();
+  refine_pose(frame, options_.pose);
+  int inliers = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const MapPointPtr& mp = frame.map_point(i);
+    if (!mp) continue;
+    if (frame.is_outlier(i)) continue;
+    mp->increase_found();
+    if (mp->num_observations() > 0) ++inliers;
+  }
+  result.inliers = inliers;
+  if (inliers < options_.min_local_map_inliers) {
+    result.reason = "local map: " + std::to_string(inliers) + " inliers";
+    return false;
+  }
+  result.reason = "ok";
+  return true;
+}
+
+bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
+  const std::size_t num_keyframes = map_.num_keyframes();
+  const std::uint64_t since_last = frame.id() - last_keyframe_frame_id_;
+  if (was_lost_ && frame.id() < last_lost_frame_id_ + static_cast<std::uint64_t>(options_.max_frames_between_keyframes) &&
+      num_keyframes > static_cast<std::size_t>(options_.max_frames_between_keyframes)) {
+    return false;
+  }
+  const int min_observations = num_keyframes <= 2 ? 2 : 3;
+  const int reference_matches = reference_keyframe_ ? reference_keyframe_->num_tracked_points(min_observations) : 0;
+  const bool idle = link_.accepts_keyframes ? link_.accepts_keyframes() : true;
+
+  // Close points: tracked vs. not tracked (new structure worth a keyframe).
+  int tracked_close = 0, untracked_close = 0;
+  const double close_depth = frame.setup().close_depth;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const float z = frame.depth(i);
+    if (z <= 0 || z >= close_depth) continue;
+    if (frame.map_point(i) && !frame.is_outlier(i)) {
+      ++tracked_close;
+    } else {
+      ++untracked_close;
+    }
+  }
+  const bool need_close = tracked_close < options_.close_points_tracked_min &&
+                          untracked_close > options_.close_points_untracked_min;
+  const double ratio = num_keyframes < 2 ? 0.4 : 0.75;
+
+  const bool c1a = since_last >= static_cast<std::uint64_t>(options_.max_frames_between_keyframes);
+  const bool c1b = since_last >= static_cast<std::uint64_t>(options_.min_frames_between_keyframes) && idle;
+  const bool c1c = inliers < reference_matches * 0.25 || need_close;
+  const bool c2 = (inliers < reference_matches * ratio || need_close) && inliers > 15;
+  if (!((c1a || c1b || c1c) && c2)) return false;
+  if (idle) return true;
+  if (link_.interrupt_bundle_adjustment) link_.interrupt_bundle_adjustment();
+  return link_.queued_keyframes ? link_.queued_keyframes() < 3 : true;
+}
+
+void Tracker::create_keyframe(Frame& frame) {
+  // Temporary odometry points never enter keyframes.
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const MapPointPtr& mp = frame.map_point(i);
+    if (mp && (mp->num_observations() < 1 || frame.is_outlier(i))) frame.set_map_point(i, nullptr);
+  }
+  KeyFramePtr kf = map_.create_keyframe(frame);
+  std::vector<std::pair<float, std::size_t>> by_depth;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame.depth(i) > 0) by_depth.emplace_back(frame.depth(i), i);
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  int n = 0;
+  const double close_depth = frame.setup().close_depth;
+  for (const auto& [z, i] : by_depth) {
+    if (!frame.map_point(i)) {
+      MapPointPtr mp = map_.create_map_point(*kf->unproject(i), kf.get());
+      mp->add_observation(kf.get(), i);
+      kf->set_map_point(i, mp);
+      mp->compute_distinctive_descriptor();
+      mp->update_normal_and_depth(frame.setup().pyramid);
+      frame.set_map_point(i, mp);
+    }
+    ++n;
+    if (z > close_depth && n > options_.new_keyframe_points) break;
+  }
+  frame.set_reference_keyframe(kf);
+  reference_keyframe_ = kf;
+  last_keyframe_ = kf;
+  last_keyframe_frame_id_ = frame.id();
+  if (link_.insert_keyframe) link_.insert_keyframe(kf);
+}
+
+}  // namespace stillslam

@@ -1,0 +1,74 @@
+#pragma once
+// The tracking state machine (ORB-SLAM style, RGB-D/stereo): initialization
+// from one frame with depth, constant-velocity motion model with projection
+// search, reference-keyframe fallback, local-map tracking, keyframe decision
+// and creation. On loss it keeps searching the last keyframe's local map with
+// a wide window (relocalization with a vocabulary is not available yet).
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "stillslam/map/frame.h"
+#include "stillslam/map/map.h"
+#include "stillslam/tracking/tracker_options.h"
+#include "stillslam/tracking/tracking_state.h"
+
+namespace stillslam {
+
+// How tracking talks to local mapping (wired by System; all optional).
+struct LocalMappingLink {
+  std::function<void(KeyFramePtr)> insert_keyframe;
+  std::function<bool()> accepts_keyframes;      // idle
+  std::function<std::size_t()> queued_keyframes;
+  std::function<void()> interrupt_bundle_adjustment;
+};
+
+struct TrackingResult {
+  TrackingState state = TrackingState::NotInitialized;
+  std::string reason;  // why not Ok, or which method succeeded
+  int matches = 0;     // matched map points before the final optimization
+  int inliers = 0;     // map-point inliers after it
+  bool new_keyframe = false;
+};
+
+class Tracker {
+ public:
+  Tracker(Map& map, TrackerOptions options, LocalMappingLink link);
+
+  // Tracks one frame (takes the map's update mutex). On success the frame
+  // holds its pose and reference keyframe.
+  TrackingResult track(Frame& frame);
+
+  TrackingState state() const { return state_; }
+  const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
+
+ private:
+  bool initialize(Frame& frame);
+  bool track_with_motion_model(Frame& frame, TrackingResult& result);
+  bool track_reference_keyframe(Frame& frame, TrackingResult& result);
+  bool track_while_lost(Frame& frame, TrackingResult& result);
+  bool track_local_map(Frame& frame, TrackingResult& result);
+  int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
+  void update_last_frame();
+  bool need_new_keyframe(const Frame& frame, int inliers) const;
+  void create_keyframe(Frame& frame);
+
+  Map& map_;
+  TrackerOptions options_;
+  LocalMappingLink link_;
+  TrackingState state_ = TrackingState::NotInitialized;
+  Frame last_frame_;
+  // The last frame's pose relative to its reference keyframe, so that map
+  // corrections of that keyframe carry over to the motion prediction.
+  Eigen::Isometry3d T_last_ref_ = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Isometry3d> velocity_;  // T_cur_last of the last step
+  KeyFramePtr reference_keyframe_;
+  KeyFramePtr last_keyframe_;
+  std::uint64_t last_keyframe_frame_id_ = 0;
+  std::uint64_t last_lost_frame_id_ = 0;
+  bool was_lost_ = false;
+  std::uint64_t temporary_point_id_ = 0;
+};
+
+}  // namespace stillslam

@@ -1,0 +1,22 @@
+#pragma once
+#include "stillslam/optimize/pose_optimizer.h"
+
+namespace stillslam {
+
+struct TrackerOptions {
+  int init_min_keypoints = 500;        // keypoints with depth needed to initialize
+  int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
+  int min_frames_between_keyframes = 0;
+  float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
+  float local_map_search_th = 3.f;
+  float reference_search_th = 5.f;     // wide window when the motion model fails
+  float lost_search_th = 10.f;         // very wide window while lost
+  int min_local_map_inliers = 30;
+  std::size_t max_local_keyframes = 80;
+  int close_points_tracked_min = 100;  // keyframe when fewer close points are tracked...
+  int close_points_untracked_min = 70; // ...and this many close points are not
+  int new_keyframe_points = 100;       // points created from depth per keyframe (beyond close ones)
+  PoseOptimizerOptions pose;
+};
+
+}  // namespace stillslam
