@@ -1,0 +1,144 @@
+// Timing of the per-frame pose optimization and of local bundle adjustment on
+// synthetic scenes (1 px noise, 30% outliers for the pose, 5% for BA).
+//   build/bench/bench_optimize [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "stillslam/geometry/se3.h"
+#include "stillslam/optimize/bundle_adjustment.h"
+#include "stillslam/optimize/pose_optimizer.h"
+
+namespace stillslam {
+namespace {
+
+CameraCalibration calibration() {
+  CameraCalibration c;
+  c.fx = 517.3;
+  c.fy = 516.5;
+  c.cx = 318.6;
+  c.cy = 255.3;
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
+
+Eigen::Isometry3d pose(const Eigen::Vector3d& center, const Eigen::Vector3d& omega) {
+  Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+  T_world_cam.linear() = so3_exp(omega);
+  T_world_cam.translation() = center;
+  return T_world_cam.inverse();
+}
+
+std::vector<PoseObservation> pose_scene(const PinholeCamera& cam, const Eigen::Isometry3d& T, int n) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::uniform_real_distribution<double> xy(-2, 2), z(2, 6), ux(0, 640), uy(0, 480), coin(0, 1);
+  std::vector<PoseObservation> obs;
+  while (static_cast<int>(obs.size()) < n) {
+    const Eigen::Vector3d p(xy(rng), xy(rng), z(rng));
+    const Eigen::Vector3d pc = T * p;
+    const Eigen::Vector2d uv = cam.project(pc);
+    if (pc.z() < 0.1 || !cam.in_image(uv)) continue;
+    PoseObservation o;
+    o.point_world = p;
+    const bool out = coin(rng) < 0.3;
+    o.pixel = out ? Eigen::Vector2d(ux(rng), uy(rng)) : Eigen::Vector2d(uv + Eigen::Vector2d(noise(rng), noise(rng)));
+    if (obs.size() % 2 == 0) o.u_right = out ? o.pixel.x() - 10 : cam.project_right_u(pc) + noise(rng);
+    obs.push_back(o);
+  }
+  return obs;
+}
+
+void BM_OptimizePose(benchmark::State& state) {
+  const PinholeCamera cam(calibration(), 40.0);
+  const Eigen::Isometry3d T = pose({0.1, 0.2, -0.3}, {0.02, -0.05, 0.1});
+  const auto obs = pose_scene(cam, T, static_cast<int>(state.range(0)));
+  Eigen::Isometry3d T0 = T;
+  T0.translation() += Eigen::Vector3d(0.03, -0.02, 0.04);  // a motion-model-sized error
+  int inliers = 0;
+  for (auto _ : state) {
+    const PoseOptimizationResult r = optimize_pose(cam, T0, obs);
+    inliers = r.num_inliers;
+    benchmark::DoNotOptimize(r.T_cam_world);
+  }
+  state.counters["inliers"] = inliers;
+}
+BENCHMARK(BM_OptimizePose)->Arg(300)->Arg(600)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+struct BaScene {
+  std::vector<BaKeyframe> keyframes;
+  std::vector<BaPoint> points;
+  std::vector<BaObservation> observations;
+};
+
+// num_kf keyframes on a 1.5 m arc looking at num_points points; the first
+// two keyframes fixed; keyframes/points perturbed, every obs noisy.
+BaScene ba_scene(const PinholeCamera& cam, int num_kf, int num_points, bool stereo) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> noise(0.0, 1.0), small(0.0, 1.0);
+  std::uniform_real_distribution<double> xy(-3, 3), z(3, 8), coin(0, 1);
+  BaScene s;
+  std::vector<Eigen::Isometry3d> truth;
+  for (int k = 0; k < num_kf; ++k) {
+    const double a = 1.5 * k / std::max(1, num_kf - 1);
+    truth.push_back(pose({a - 0.75, 0.1 * std::sin(3 * a), 0.2 * a}, {0.02 * k, -0.03 * k, 0.01}));
+    Eigen::Isometry3d noisy = truth.back();
+    if (k >= 2) {
+      noisy.translation() += 0.03 * Eigen::Vector3d(small(rng), small(rng), small(rng));
+      noisy.linear() = so3_exp(0.01 * Eigen::Vector3d(small(rng), small(rng), small(rng))) * noisy.linear();
+    }
+    s.keyframes.push_back({static_cast<std::uint64_t>(k), noisy, k < 2});
+  }
+  for (int i = 0; i < num_points; ++i) {
+    const Eigen::Vector3d p(xy(rng), xy(rng), z(rng));
+    std::vector<BaObservation> obs;
+    for (int k = 0; k < num_kf; ++k) {
+      const Eigen::Vector3d pc = truth[static_cast<std::size_t>(k)] * p;
+      const Eigen::Vector2d uv = cam.project(pc);
+      if (pc.z() < 0.1 || !cam.in_image(uv)) continue;
+      BaObservation o;
+      o.keyframe = static_cast<std::size_t>(k);
+      o.point = s.points.size();
+      const bool out = coin(rng) < 0.05;
+      o.pixel = uv + Eigen::Vector2d(noise(rng), noise(rng)) + (out ? Eigen::Vector2d(30, -20) : Eigen::Vector2d::Zero());
+      if (stereo) o.u_right = cam.project_right_u(pc) + noise(rng) + (out ? 30.0 : 0.0);
+      obs.push_back(o);
+    }
+    if (obs.size() < 2) continue;
+    s.points.push_back({static_cast<std::uint64_t>(i), p + 0.05 * Eigen::Vector3d(small(rng), small(rng), small(rng))});
+    s.observations.insert(s.observations.end(), obs.begin(), obs.end());
+  }
+  return s;
+}
+
+void BM_LocalBundleAdjustment(benchmark::State& state) {
+  const PinholeCamera cam(calibration(), 40.0);
+  const BaScene s = ba_scene(cam, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0);
+  BundleAdjustmentOptions options;
+  options.iterations = 5;
+  options.iterations_after_outliers = 10;
+  options.linear_solver = state.range(3) == 0 ? BaLinearSolver::DenseSchur : BaLinearSolver::SparseSchur;
+  double final_cost = 0;
+  for (auto _ : state) {
+    const BundleAdjustmentResult r = bundle_adjust(cam, s.keyframes, s.points, s.observations, options);
+    final_cost = r.final_cost;
+    benchmark::DoNotOptimize(r.points);
+  }
+  state.counters["observations"] = static_cast<double>(s.observations.size());
+  state.counters["final_cost_per_obs"] = final_cost / static_cast<double>(s.observations.size());
+}
+// Args: keyframes, points, stereo, solver (0 dense Schur, 1 sparse Schur).
+BENCHMARK(BM_LocalBundleAdjustment)
+    ->Args({10, 1000, 1, 0})
+    ->Args({10, 1000, 1, 1})
+    ->Args({10, 1000, 0, 0})
+    ->Args({20, 2000, 1, 0})
+    ->Args({20, 2000, 1, 1})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace stillslam
+
+BENCHMARK_MAIN();

@@ -1,0 +1,166 @@
+#include "stillslam/optimize/bundle_adjustment.h"
+
+#include <ceres/iteration_callback.h>
+#include <ceres/loss_function.h>
+#include <ceres/ordered_groups.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "stillslam/core/error.h"
+#include "stillslam/optimize/reprojection_costs.h"
+#include "stillslam/optimize/se3_manifold.h"
+
+namespace stillslam {
+namespace {
+
+class AbortCallback final : public ceres::IterationCallback {
+ public:
+  explicit AbortCallback(const std::atomic<bool>* abort) : abort_(abort) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return abort_ && abort_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* abort_;
+};
+
+// Dense Schur is fastest while the reduced camera system is small.
+constexpr int kDenseSchurMaxFreeKeyframes = 40;
+
+}  // namespace
+
+BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<BaKeyframe> keyframes,
+                                     std::vector<BaPoint> points, const std::vector<BaObservation>& observations,
+                                     const BundleAdjustmentOptions& options) {
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    if (observations[i].keyframe >= keyframes.size() || observations[i].point >= points.size()) {
+      throw Error("bundle_adjust: observation " + std::to_string(i) + " refers to keyframe " +
+                  std::to_string(observations[i].keyframe) + " / point " + std::to_string(observations[i].point) +
+                  " but there are " + std::to_string(keyframes.size()) + " keyframes and " +
+                  std::to_string(points.size()) + " points");
+    }
+  }
+  const Intrinsics k(camera);
+  const std::size_t n_obs = observations.size();
+
+  std::vector<PoseParams> poses(keyframes.size());
+  for (std::size_t i = 0; i < keyframes.size(); ++i) poses[i] = to_pose_params(keyframes[i].T_cam_world);
+  std::vector<Eigen::Vector3d> xyz(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) xyz[i] = points[i].position_world;
+
+  std::vector<bool> stereo(n_obs);
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n_obs);
+  for (std::size_t i = 0; i < n_obs; ++i) {
+    const BaObservation& o = observations[i];
+    stereo[i] = o.u_right >= 0 && k.bf > 0;
+    if (stereo[i]) {
+      costs[i] = std::make_unique<StereoBaCost>(k, o.pixel, o.u_right, o.inv_sigma2);
+    } else {
+      costs[i] = std::make_unique<MonoBaCost>(k, o.pixel, o.inv_sigma2);
+    }
+  }
+
+  BundleAdjustmentResult result;
+  result.observation_inlier.assign(n_obs, false);
+
+  // Classifies every observation against the current state; returns the
+  // cost 0.5 * sum chi2 over the inliers (or over all evaluable ones).
+  auto classify = [&](bool all_count) {
+    double cost = 0;
+    for (std::size_t i = 0; i < n_obs; ++i) {
+      const BaObservation& o = observations[i];
+      const ReprojectionCheck c = check_reprojection(k, from_pose_params(poses[o.keyframe].data()), xyz[o.point],
+                                                     o.pixel, stereo[i] ? o.u_right : -1.0, o.inv_sigma2);
+      const bool in_front = c.depth > 0;
+      result.observation_inlier[i] = in_front && c.chi2 <= (stereo[i] ? options.chi2_stereo : options.chi2_mono);
+      if (result.observation_inlier[i] || (all_count && in_front)) cost += 0.5 * c.chi2;
+    }
+    return cost;
+  };
+  result.initial_cost = classify(true);
+  // First pass: every observation in front of its camera takes part.
+  std::vector<bool> active(n_obs);
+  for (std::size_t i = 0; i < n_obs; ++i) {
+    const BaObservation& o = observations[i];
+    active[i] = (from_pose_params(poses[o.keyframe].data()) * xyz[o.point]).z() > 0;
+  }
+
+  ceres::HuberLoss huber_mono(std::sqrt(options.chi2_mono));
+  ceres::HuberLoss huber_stereo(std::sqrt(options.chi2_stereo));
+  Se3LeftManifold manifold;
+  AbortCallback abort_callback(options.abort);
+
+  auto run_pass = [&](bool robust, int iterations) {
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.disable_all_safety_checks = true;
+    ceres::Problem problem(problem_options);
+    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+    std::vector<bool> pose_added(keyframes.size(), false), point_added(points.size(), false);
+    int free_keyframes = 0;
+    for (std::size_t i = 0; i < n_obs; ++i) {
+      if (!active[i]) continue;
+      const BaObservation& o = observations[i];
+      double* pose = poses[o.keyframe].data();
+      double* point = xyz[o.point].data();
+      if (!pose_added[o.keyframe]) {
+        pose_added[o.keyframe] = true;
+        problem.AddParameterBlock(pose, 7, &manifold);
+        if (keyframes[o.keyframe].fixed) {
+          problem.SetParameterBlockConstant(pose);
+        } else {
+          ++free_keyframes;
+        }
+        ordering->AddElementToGroup(pose, 1);
+      }
+      if (!point_added[o.point]) {
+        point_added[o.point] = true;
+        problem.AddParameterBlock(point, 3);
+        ordering->AddElementToGroup(point, 0);
+      }
+      ceres::LossFunction* loss = robust ? (stereo[i] ? &huber_stereo : &huber_mono) : nullptr;
+      problem.AddResidualBlock(costs[i].get(), loss, pose, point);
+    }
+    if (problem.NumResidualBlocks() == 0) return;
+
+    ceres::Solver::Options solver_options;
+    const bool dense = options.linear_solver == BaLinearSolver::DenseSchur ||
+                       (options.linear_solver == BaLinearSolver::Auto && free_keyframes <= kDenseSchurMaxFreeKeyframes);
+    solver_options.linear_solver_type = dense ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+    solver_options.linear_solver_ordering = ordering;
+    solver_options.max_num_iterations = iterations;
+    solver_options.num_threads = std::max(1, options.num_threads);
+    solver_options.logging_type = ceres::SILENT;
+    solver_options.minimizer_progress_to_stdout = false;
+    if (options.abort) solver_options.callbacks.push_back(&abort_callback);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, &problem, &summary);
+    if (summary.termination_type == ceres::USER_FAILURE) result.aborted = true;
+  };
+
+  auto aborted = [&] { return result.aborted || (options.abort && options.abort->load()); };
+  if (!aborted()) run_pass(options.huber, options.iterations);
+  classify(false);
+  for (int round = 0; round < options.outlier_rounds && !aborted(); ++round) {
+    active = result.observation_inlier;
+    run_pass(false, options.iterations_after_outliers);
+    classify(false);
+  }
+  result.aborted = aborted();
+  result.final_cost = classify(false);
+
+  result.T_cam_world.resize(keyframes.size());
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    // Fixed keyframes are returned bit-exact (no quaternion round trip).
+    result.T_cam_world[i] = keyframes[i].fixed ? keyframes[i].T_cam_world : from_pose_params(poses[i].data());
+  }
+  result.points = std::move(xyz);
+  return result;
+}
+
+}  // namespace stillslam
