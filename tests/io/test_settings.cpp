@@ -340,6 +340,22 @@ TEST(Settings, ErrorsNameFileAndKey) {
   }
 }
 
+// ORB-SLAM3's Stereo-Inertial/EuRoC.yaml has a matrix row without its
+// trailing comma, which OpenCV 4 rejects; it must still load.
+TEST(Settings, MatrixRowWithoutComma) {
+  TempDir dir;
+  const std::string text = replaced(kOldEuroc, "ThDepth: 35\n",
+                                    "ThDepth: 35.0 # 35\n"
+                                    "Tbc: !!opencv-matrix\n   rows: 4\n   cols: 4\n   dt: f\n"
+                                    "   data: [1.0, 0.0, 0.0, 0.0\n          0.0,-1.0, 0.0, 0.0,\n"
+                                    "          0.0, 0.0,-1.0, 0.0,\n          0.0, 0.0, 0.0, 1.0]\n"
+                                    "IMU.NoiseGyro: 1.7e-04 # 1.6968e-04 \n");
+  const Settings s = load_settings(dir.write("EuRoC-inertial.yaml", text));
+  EXPECT_DOUBLE_EQ(s.bf, 47.90639384423901);
+  ASSERT_TRUE(s.stereo.has_value());
+  EXPECT_NEAR(s.stereo->baseline, 0.11007778, 1e-7);
+}
+
 TEST(Settings, MissingOrMalformedFile) {
   TempDir dir;
   try {

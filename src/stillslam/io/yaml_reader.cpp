@@ -1,12 +1,28 @@
 #include "stillslam/io/yaml_reader.h"
 
 #include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
 
 #include <opencv2/core.hpp>
+#include <spdlog/spdlog.h>
 
 #include "stillslam/core/error.h"
 
 namespace stillslam {
+
+namespace {
+
+// Some published ORB-SLAM3 files (Stereo-Inertial/EuRoC.yaml, Tbc) miss the
+// comma at the end of a matrix row; older OpenCV parsers accepted that, 4.x
+// does not. Returns the text with such commas added (unchanged if none).
+std::string add_missing_row_commas(const std::string& text) {
+  const std::regex kNumberNewlineNumber(R"(([0-9.])([ \t]*\r?\n[ \t]*)([-+]?[0-9.]))");
+  return std::regex_replace(text, kNumberNewlineNumber, "$1,$2$3");
+}
+
+}  // namespace
 
 std::optional<double> node_number(const cv::FileNode& node) {
   if (node.isInt()) return static_cast<double>(static_cast<int>(node));
@@ -22,8 +38,22 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
   try {
     storage_.open(file.string(), cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
   } catch (const cv::Exception& e) {
-    throw Error(file.string() + ": not a valid OpenCV YAML file (it must start with '%YAML:1.0'; " +
-                e.err + ")");
+    std::stringstream buffer;
+    buffer << std::ifstream(file).rdbuf();
+    const std::string repaired = add_missing_row_commas(buffer.str());
+    bool ok = false;
+    if (repaired != buffer.str()) {
+      try {
+        ok = storage_.open(repaired, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+      } catch (const cv::Exception&) {
+        ok = false;
+      }
+    }
+    if (!ok) {
+      throw Error(file.string() + ": not a valid OpenCV YAML file (it must start with '%YAML:1.0'; " + e.err +
+                  ")");
+    }
+    spdlog::warn("{}: a matrix row misses its trailing comma; read as if it were there", file.string());
   }
   if (!storage_.isOpened()) {
     throw Error(file.string() + ": cannot be read as OpenCV YAML (it must start with '%YAML:1.0')");
