@@ -119,7 +119,9 @@ void BM_LocalBundleAdjustment(benchmark::State& state) {
   BundleAdjustmentOptions options;
   options.iterations = 5;
   options.iterations_after_outliers = 10;
-  options.linear_solver = state.range(3) == 0 ? BaLinearSolver::DenseSchur : BaLinearSolver::SparseSchur;
+  options.linear_solver = state.range(3) == 0   ? BaLinearSolver::DenseSchur
+                          : state.range(3) == 1 ? BaLinearSolver::SparseSchur
+                                                : BaLinearSolver::IterativeSchur;
   double final_cost = 0;
   for (auto _ : state) {
     const BundleAdjustmentResult r = bundle_adjust(cam, s.keyframes, s.points, s.observations, options);
@@ -129,10 +131,11 @@ void BM_LocalBundleAdjustment(benchmark::State& state) {
   state.counters["observations"] = static_cast<double>(s.observations.size());
   state.counters["final_cost_per_obs"] = final_cost / static_cast<double>(s.observations.size());
 }
-// Args: keyframes, points, stereo, solver (0 dense Schur, 1 sparse Schur).
+// Args: keyframes, points, stereo, solver (0 dense, 1 sparse, 2 iterative Schur).
 BENCHMARK(BM_LocalBundleAdjustment)
     ->Args({10, 1000, 1, 0})
     ->Args({10, 1000, 1, 1})
+    ->Args({10, 1000, 1, 2})
     ->Args({10, 1000, 0, 0})
     ->Args({20, 2000, 1, 0})
     ->Args({20, 2000, 1, 1})

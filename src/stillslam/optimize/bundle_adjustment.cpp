@@ -132,6 +132,10 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
     const bool dense = options.linear_solver == BaLinearSolver::DenseSchur ||
                        (options.linear_solver == BaLinearSolver::Auto && free_keyframes <= kDenseSchurMaxFreeKeyframes);
     solver_options.linear_solver_type = dense ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+    if (options.linear_solver == BaLinearSolver::IterativeSchur) {
+      solver_options.linear_solver_type = ceres::ITERATIVE_SCHUR;
+      solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
+    }
     solver_options.linear_solver_ordering = ordering;
     solver_options.max_num_iterations = iterations;
     solver_options.num_threads = std::max(1, options.num_threads);

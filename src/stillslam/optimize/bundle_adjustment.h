@@ -32,7 +32,7 @@ struct BaObservation {
   double inv_sigma2 = 1;
 };
 
-enum class BaLinearSolver { DenseSchur, SparseSchur, Auto };
+enum class BaLinearSolver { DenseSchur, SparseSchur, IterativeSchur, Auto };
 
 struct BundleAdjustmentOptions {
   // Levenberg-Marquardt iterations of the first (robust) pass.
@@ -45,8 +45,11 @@ struct BundleAdjustmentOptions {
   double chi2_mono = kChi2Mono95;
   double chi2_stereo = kChi2Stereo95;
   bool huber = true;
+  // 1 thread is bit-for-bit deterministic; more threads may change rounding.
   int num_threads = 1;
-  BaLinearSolver linear_solver = BaLinearSolver::Auto;  // Auto: dense Schur for small windows
+  // Auto: dense Schur up to 40 free keyframes (fastest for local windows,
+  // measured in bench/bench_optimize.cpp), sparse Schur (SuiteSparse) above.
+  BaLinearSolver linear_solver = BaLinearSolver::Auto;
   const std::atomic<bool>* abort = nullptr;  // stop early when set (checked every iteration)
 };
 
