@@ -3,7 +3,6 @@
 // around eval/evaluate.h.
 #include <spdlog/spdlog.h>
 
-#include <fstream>
 #include <iostream>
 #include <optional>
 
@@ -61,15 +60,11 @@ void run_eval(const EvalArgs& args) {
 
   std::cout << format_evaluation_table(result, options);
   if (!args.json.empty()) {
-    nlohmann::json json = evaluation_to_json(result, options);
-    json["inputs"] = {{"gt", args.gt},
-                      {"est", args.est},
-                      {"gt_format", format_name(args.gt, args.gt_format)},
-                      {"est_format", format_name(args.est, args.est_format)}};
-    std::ofstream out(args.json);
-    out << json.dump(2) << '\n';
-    out.flush();
-    if (!out) throw Error("cannot write " + args.json + "; check that its folder exists and is writable");
+    const nlohmann::json inputs = {{"gt", args.gt},
+                                   {"est", args.est},
+                                   {"gt_format", format_name(args.gt, args.gt_format)},
+                                   {"est_format", format_name(args.est, args.est_format)}};
+    write_evaluation_json(args.json, result, options, {{"inputs", inputs}});
   }
   if (!args.plot.empty()) {
     const auto error_plot = write_evaluation_plots(args.plot, result);

@@ -56,4 +56,9 @@ EvaluationResult evaluate(const Trajectory& gt, const Trajectory& est, const Eva
   return result;
 }
 
+EvaluationResult evaluate_files(const std::filesystem::path& gt_path, const std::filesystem::path& est_path,
+                                const EvaluationOptions& options) {
+  return evaluate(read_trajectory(gt_path), read_trajectory(est_path), options);
+}
+
 }  // namespace stillslam

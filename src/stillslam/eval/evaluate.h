@@ -2,6 +2,7 @@
 // One-call trajectory evaluation: associate stamps, align, then absolute
 // (APE, translation) and relative (RPE, translation and rotation) errors.
 // The `stillslam eval` command, run summaries and benchmarks all use this.
+#include <filesystem>
 #include <vector>
 
 #include "stillslam/eval/alignment.h"
@@ -40,5 +41,9 @@ struct EvaluationResult {
 // Error when no stamps associate (naming max_dt) or alignment is impossible.
 // An RPE delta longer than the sequence leaves the RPE empty (count 0).
 EvaluationResult evaluate(const Trajectory& gt, const Trajectory& est, const EvaluationOptions& options);
+
+// Reads both files (formats detected; see io/trajectory.h) and evaluates them.
+EvaluationResult evaluate_files(const std::filesystem::path& gt_path, const std::filesystem::path& est_path,
+                                const EvaluationOptions& options);
 
 }  // namespace stillslam

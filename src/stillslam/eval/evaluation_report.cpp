@@ -1,6 +1,9 @@
 #include "stillslam/eval/evaluation_report.h"
 
 #include <cstdio>
+#include <fstream>
+
+#include "stillslam/core/error.h"
 
 namespace stillslam {
 
@@ -37,6 +40,16 @@ nlohmann::json evaluation_to_json(const EvaluationResult& result, const Evaluati
         {"max_dt", options.association.effective_max_dt()},
         {"offset", options.association.offset}}},
   };
+}
+
+void write_evaluation_json(const std::filesystem::path& path, const EvaluationResult& result,
+                           const EvaluationOptions& options, const nlohmann::json& extra) {
+  nlohmann::json json = evaluation_to_json(result, options);
+  for (const auto& [key, value] : extra.items()) json[key] = value;
+  std::ofstream out(path);
+  out << json.dump(2) << '\n';
+  out.flush();
+  if (!out) throw Error("cannot write " + path.string() + "; check that its folder exists and is writable");
 }
 
 std::string format_evaluation_table(const EvaluationResult& result, const EvaluationOptions& options) {

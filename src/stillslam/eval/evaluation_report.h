@@ -1,6 +1,7 @@
 #pragma once
 // Machine- and human-readable summaries of an EvaluationResult.
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <string>
 
 #include "stillslam/eval/evaluate.h"
@@ -14,6 +15,11 @@ nlohmann::json to_json(const ErrorStatistics& stats);
 // alignment{type,scale,rotation (row-major 3x3),translation},
 // association{method,max_dt,offset}.
 nlohmann::json evaluation_to_json(const EvaluationResult& result, const EvaluationOptions& options);
+
+// Writes evaluation_to_json (plus `extra` keys merged at the top level, e.g.
+// "inputs") to `path`, pretty-printed. Error when the file cannot be written.
+void write_evaluation_json(const std::filesystem::path& path, const EvaluationResult& result,
+                           const EvaluationOptions& options, const nlohmann::json& extra = nlohmann::json::object());
 
 // A fixed-width table of the statistics, for the terminal.
 std::string format_evaluation_table(const EvaluationResult& result, const EvaluationOptions& options);
