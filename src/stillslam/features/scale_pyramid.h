@@ -16,7 +16,7 @@ struct ScalePyramid {
   explicit ScalePyramid(const OrbOptions& options);
   ScalePyramid(int n_levels, float scale_factor);
 
-  // Level whose scale is closest to `scale_ratio` (e.g. the predicted scale of
+  // Smallest level whose scale is >= `scale_ratio` (e.g. the predicted level of
   // a map point seen from a new distance), clamped to [0, n_levels - 1].
   int level_for_scale(float scale_ratio) const;
 };

@@ -1,0 +1,191 @@
+#include "stillslam/features/stereo_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "stillslam/core/error.h"
+#include "stillslam/features/descriptor.h"
+
+namespace stillslam {
+namespace {
+
+// Sum of absolute differences between two (2w+1)^2 windows, each taken
+// relative to its own centre pixel so a brightness offset between the
+// cameras does not matter.
+int centred_sad(const cv::Mat& left, int ul, int vl, const cv::Mat& right, int ur, int vr, int w) {
+  const int cl = left.at<std::uint8_t>(vl, ul), cr = right.at<std::uint8_t>(vr, ur);
+  int sad = 0;
+  for (int dv = -w; dv <= w; ++dv) {
+    const std::uint8_t* pl = left.ptr<std::uint8_t>(vl + dv) + ul;
+    const std::uint8_t* pr = right.ptr<std::uint8_t>(vr + dv) + ur;
+    for (int du = -w; du <= w; ++du) sad += std::abs((pl[du] - cl) - (pr[du] - cr));
+  }
+  return sad;
+}
+
+struct Candidate {
+  std::size_t left;
+  int sad;
+};
+
+}  // namespace
+
+StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& left_pyramid,
+                           const OrbFeatures& right, const std::vector<cv::Mat>& right_pyramid,
+                           const ScalePyramid& pyramid, double fx, double bf,
+                           const StereoMatchOptions& options) {
+  const std::size_t n = left.keypoints.size();
+  StereoMatches out;
+  out.u_right.assign(n, -1.f);
+  out.depth.assign(n, -1.f);
+  if (n == 0 || right.keypoints.empty()) return out;
+  if (left_pyramid.size() != static_cast<std::size_t>(pyramid.n_levels) ||
+      right_pyramid.size() != static_cast<std::size_t>(pyramid.n_levels)) {
+    throw Error("match_stereo: both image pyramids need " + std::to_string(pyramid.n_levels) +
+                " levels (pass the pyramids returned by OrbExtractor::extract)");
+  }
+  if (!(fx > 0) || !(bf > 0)) {
+    throw Error("match_stereo: fx and bf (baseline * fx) must be positive; check Camera.fx and "
+                "Stereo.b / Camera.bf in the settings");
+  }
+
+  // Right keypoints indexed by every image row of their epipolar band.
+  const int rows = left_pyramid[0].rows;
+  std::vector<std::vector<std::size_t>> by_row(static_cast<std::size_t>(rows));
+  for (std::size_t i = 0; i < right.keypoints.size(); ++i) {
+    const cv::KeyPoint& kp = right.keypoints[i];
+    const float band = options.row_band * pyramid.scale[static_cast<std::size_t>(kp.octave)];
+    const int r0 = std::max(0, static_cast<int>(std::floor(kp.pt.y - band)));
+    const int r1 = std::min(rows - 1, static_cast<int>(std::ceil(kp.pt.y + band)));
+    for (int r = r0; r <= r1; ++r) by_row[static_cast<std::size_t>(r)].push_back(i);
+  }
+
+  const float min_d = options.min_disparity;
+  const float max_d = options.max_disparity < 0 ? static_cast<float>(fx) : options.max_disparity;
+  const int w = options.patch_half_size, window = options.search_window;
+  std::vector<int> sads(static_cast<std::size_t>(2 * window + 1));
+  std::vector<Candidate> accepted;
+  accepted.reserve(n);
+
+  for (std::size_t i = 0; i < n; ++i) {
+    const cv::KeyPoint& kl = left.keypoints[i];
+    const int level = kl.octave;
+    const float ul = kl.pt.x, vl = kl.pt.y;
+    const int row = static_cast<int>(std::lround(vl));
+    if (row < 0 || row >= rows) continue;
+    const float min_u = ul - max_d, max_u = ul - min_d;
+    if (max_u < 0) continue;
+
+    // Best descriptor among right keypoints of neighbouring scale in range.
+    int best_distance = std::numeric_limits<int>::max();
+    std::size_t best_right = 0;
+    const std::uint8_t* dl = left.descriptors.ptr<std::uint8_t>(static_cast<int>(i));
+    for (std::size_t j : by_row[static_cast<std::size_t>(row)]) {
+      const cv::KeyPoint& kr = right.keypoints[j];
+      if (kr.octave < level - 1 || kr.octave > level + 1) continue;
+      if (kr.pt.x < min_u || kr.pt.x > max_u) continue;
+      const int d = descriptor_distance(dl, right.descriptors.ptr<std::uint8_t>(static_cast<int>(j)));
+      if (d < best_distance) {
+        best_distance = d;
+        best_right = j;
+      }
+    }
+    if (best_distance >= options.max_descriptor_distance) continue;
+
+    // SAD search along the row on the left keypoint's level.
+    const float scale = pyramid.scale[static_cast<std::size_t>(level)];
+    const float inv_scale = pyramid.inv_scale[static_cast<std::size_t>(level)];
+    const cv::Mat& img_l = left_pyramid[static_cast<std::size_t>(level)];
+    const cv::Mat& img_r = right_pyramid[static_cast<std::size_t>(level)];
+    const int su_l = static_cast<int>(std::lround(ul * inv_scale));
+    const int sv_l = static_cast<int>(std::lround(vl * inv_scale));
+    const int su_r0 = static_cast<int>(std::lround(right.keypoints[best_right].pt.x * inv_scale));
+    if (sv_l - w < 0 || sv_l + w >= img_l.rows || sv_l + w >= img_r.rows) continue;
+    if (su_l - w < 0 || su_l + w >= img_l.cols) continue;
+    if (su_r0 - window - w < 0 || su_r0 + window + w >= img_r.cols) continue;
+
+    int best_sad = std::numeric_limits<int>::max(), best_inc = 0;
+    for (int inc = -window; inc <= window; ++inc) {
+      const int sad = centred_sad(img_l, su_l, sv_l, img_r, su_r0 + inc, sv_l, w);
+      sads[static_cast<std::size_t>(inc + window)] = sad;
+      if (sad < best_sad) {
+        best_sad = sad;
+        best_inc = inc;
+      }
+    }
+    // A minimum on the window edge cannot be refined: the true one may be outside.
+    if (best_inc == -window || best_inc == window) continue;
+
+    float delta = 0.f;
+    if (options.subpixel) {
+      const float d1 = static_cast<float>(sads[static_cast<std::size_t>(best_inc + window - 1)]);
+      const float d2 = static_cast<float>(best_sad);
+      const float d3 = static_cast<float>(sads[static_cast<std::size_t>(best_inc + window + 1)]);
+      const float denominator = 2.f * (d1 + d3 - 2.f * d2);
+      if (denominator > 0.f) delta = (d1 - d3) / denominator;
+      if (delta < -1.f || delta > 1.f) continue;
+    }
+
+    float u_r = scale * (static_cast<float>(su_r0 + best_inc) + delta);
+    float disparity = ul - u_r;
+    if (disparity < min_d || disparity >= max_d) continue;
+    if (disparity <= 0.f) {  // at infinity: keep a tiny positive disparity
+      disparity = 0.01f;
+      u_r = ul - disparity;
+    }
+    out.u_right[i] = u_r;
+    out.depth[i] = static_cast<float>(bf / disparity);
+    accepted.push_back({i, best_sad});
+  }
+
+  // Outliers: SAD well above the median of all accepted matches.
+  if (!accepted.empty()) {
+    std::vector<int> all(accepted.size());
+    for (std::size_t k = 0; k < accepted.size(); ++k) all[k] = accepted[k].sad;
+    std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2), all.end());
+    const float threshold = options.sad_outlier_factor * static_cast<float>(all[all.size() / 2]);
+    for (const Candidate& c : accepted) {
+      if (static_cast<float>(c.sad) > threshold) {
+        out.u_right[c.left] = -1.f;
+        out.depth[c.left] = -1.f;
+      } else {
+        ++out.num_matches;
+      }
+    }
+  }
+  return out;
+}
+
+StereoMatches stereo_from_depth(const std::vector<cv::KeyPoint>& raw,
+                                const std::vector<cv::KeyPoint>& undistorted, const cv::Mat& depth,
+                                double bf, double depth_scale) {
+  if (raw.size() != undistorted.size()) {
+    throw Error("stereo_from_depth: raw and undistorted keypoint lists differ in size");
+  }
+  if (depth.type() != CV_32FC1 && depth.type() != CV_16UC1) {
+    throw Error("stereo_from_depth: depth image must be CV_32F metres or CV_16U with a depth scale "
+                "(DepthMapFactor), got type " + std::to_string(depth.type()));
+  }
+  if (!(depth_scale > 0)) {
+    throw Error("stereo_from_depth: depth scale (DepthMapFactor) must be positive");
+  }
+  StereoMatches out;
+  out.u_right.assign(raw.size(), -1.f);
+  out.depth.assign(raw.size(), -1.f);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const int x = static_cast<int>(std::lround(raw[i].pt.x));
+    const int y = static_cast<int>(std::lround(raw[i].pt.y));
+    if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
+    const double d = depth.type() == CV_32FC1 ? static_cast<double>(depth.at<float>(y, x))
+                                              : depth.at<std::uint16_t>(y, x) / depth_scale;
+    if (!(d > 0) || !std::isfinite(d)) continue;
+    out.depth[i] = static_cast<float>(d);
+    out.u_right[i] = static_cast<float>(undistorted[i].pt.x - bf / d);
+    ++out.num_matches;
+  }
+  return out;
+}
+
+}  // namespace stillslam
