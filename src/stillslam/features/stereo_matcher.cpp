@@ -11,23 +11,43 @@
 namespace stillslam {
 namespace {
 
-// Sum of absolute differences between two (2w+1)^2 windows, each taken
-// relative to its own centre pixel so a brightness offset between the
-// cameras does not matter.
-int centred_sad(const cv::Mat& left, int ul, int vl, const cv::Mat& right, int ur, int vr, int w) {
-  const int cl = left.at<std::uint8_t>(vl, ul), cr = right.at<std::uint8_t>(vr, ur);
-  int sad = 0;
+// Patch costs between two (2w+1)^2 windows, each taken relative to its own
+// mean so a brightness offset between the cameras does not matter (zero-mean
+// SAD and SSD). SAD picks the integer disparity robustly; SSD is used for the
+// sub-pixel fit because, unlike the V-shaped SAD, it is locally quadratic in
+// the shift (a parabola through three SAD values is biased toward the
+// steeper side by up to a quarter pixel even for exact integer shifts).
+struct PatchCost {
+  float sad = 0, ssd = 0;
+};
+
+PatchCost zero_mean_cost(const cv::Mat& left, int ul, int vl, const cv::Mat& right, int ur, int vr, int w) {
+  int sum_l = 0, sum_r = 0;
   for (int dv = -w; dv <= w; ++dv) {
     const std::uint8_t* pl = left.ptr<std::uint8_t>(vl + dv) + ul;
     const std::uint8_t* pr = right.ptr<std::uint8_t>(vr + dv) + ur;
-    for (int du = -w; du <= w; ++du) sad += std::abs((pl[du] - cl) - (pr[du] - cr));
+    for (int du = -w; du <= w; ++du) {
+      sum_l += pl[du];
+      sum_r += pr[du];
+    }
   }
-  return sad;
+  const float offset = static_cast<float>(sum_l - sum_r) / static_cast<float>((2 * w + 1) * (2 * w + 1));
+  PatchCost cost;
+  for (int dv = -w; dv <= w; ++dv) {
+    const std::uint8_t* pl = left.ptr<std::uint8_t>(vl + dv) + ul;
+    const std::uint8_t* pr = right.ptr<std::uint8_t>(vr + dv) + ur;
+    for (int du = -w; du <= w; ++du) {
+      const float diff = static_cast<float>(pl[du] - pr[du]) - offset;
+      cost.sad += std::abs(diff);
+      cost.ssd += diff * diff;
+    }
+  }
+  return cost;
 }
 
 struct Candidate {
   std::size_t left;
-  int sad;
+  float sad;
 };
 
 }  // namespace
@@ -65,7 +85,7 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
   const float min_d = options.min_disparity;
   const float max_d = options.max_disparity < 0 ? static_cast<float>(fx) : options.max_disparity;
   const int w = options.patch_half_size, window = options.search_window;
-  std::vector<int> sads(static_cast<std::size_t>(2 * window + 1));
+  std::vector<PatchCost> costs(static_cast<std::size_t>(2 * window + 1));
   std::vector<Candidate> accepted;
   accepted.reserve(n);
 
@@ -106,12 +126,13 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
     if (su_l - w < 0 || su_l + w >= img_l.cols) continue;
     if (su_r0 - window - w < 0 || su_r0 + window + w >= img_r.cols) continue;
 
-    int best_sad = std::numeric_limits<int>::max(), best_inc = 0;
+    float best_sad = std::numeric_limits<float>::max();
+    int best_inc = 0;
     for (int inc = -window; inc <= window; ++inc) {
-      const int sad = centred_sad(img_l, su_l, sv_l, img_r, su_r0 + inc, sv_l, w);
-      sads[static_cast<std::size_t>(inc + window)] = sad;
-      if (sad < best_sad) {
-        best_sad = sad;
+      const PatchCost cost = zero_mean_cost(img_l, su_l, sv_l, img_r, su_r0 + inc, sv_l, w);
+      costs[static_cast<std::size_t>(inc + window)] = cost;
+      if (cost.sad < best_sad) {
+        best_sad = cost.sad;
         best_inc = inc;
       }
     }
@@ -120,9 +141,9 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
 
     float delta = 0.f;
     if (options.subpixel) {
-      const float d1 = static_cast<float>(sads[static_cast<std::size_t>(best_inc + window - 1)]);
-      const float d2 = static_cast<float>(best_sad);
-      const float d3 = static_cast<float>(sads[static_cast<std::size_t>(best_inc + window + 1)]);
+      const float d1 = costs[static_cast<std::size_t>(best_inc + window - 1)].ssd;
+      const float d2 = costs[static_cast<std::size_t>(best_inc + window)].ssd;
+      const float d3 = costs[static_cast<std::size_t>(best_inc + window + 1)].ssd;
       const float denominator = 2.f * (d1 + d3 - 2.f * d2);
       if (denominator > 0.f) delta = (d1 - d3) / denominator;
       if (delta < -1.f || delta > 1.f) continue;
@@ -142,12 +163,12 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
 
   // Outliers: SAD well above the median of all accepted matches.
   if (!accepted.empty()) {
-    std::vector<int> all(accepted.size());
+    std::vector<float> all(accepted.size());
     for (std::size_t k = 0; k < accepted.size(); ++k) all[k] = accepted[k].sad;
     std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2), all.end());
-    const float threshold = options.sad_outlier_factor * static_cast<float>(all[all.size() / 2]);
+    const float threshold = options.sad_outlier_factor * all[all.size() / 2];
     for (const Candidate& c : accepted) {
-      if (static_cast<float>(c.sad) > threshold) {
+      if (c.sad > threshold) {
         out.u_right[c.left] = -1.f;
         out.depth[c.left] = -1.f;
       } else {
