@@ -217,3 +217,56 @@ TEST(EurocDataset, GeneratedLayoutPairsAndErrors) {
 
 }  // namespace
 }  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+// `stillslam simulate` writes a TUM and an EuRoC layout into one folder; the
+// settings pick one. An already ideal pair passes through rectification
+// unchanged.
+TEST(OpenDataset, MixedLayoutChosenBySettings) {
+  TempDir dir;
+  const fs::path seq = test::write_euroc_fixture(dir.path(), 2);
+  // Turn the cameras into an ideal rectified pair (the simulator's).
+  const std::string ideal = R"(%YAML:1.0
+T_BS:
+  cols: 4
+  rows: 4
+  data: [1.0, 0.0, 0.0, X, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+resolution: [752, 480]
+camera_model: pinhole
+intrinsics: [450.0, 450.0, 375.5, 239.5]
+distortion_model: radial-tangential
+distortion_coefficients: [0.0, 0.0, 0.0, 0.0]
+)";
+  std::string cam1 = ideal;
+  cam1.replace(cam1.find('X'), 1, "0.12");
+  std::string cam0 = ideal;
+  cam0.replace(cam0.find('X'), 1, "0.0");
+  std::ofstream(seq / "mav0/cam0/sensor.yaml") << cam0;
+  std::ofstream(seq / "mav0/cam1/sensor.yaml") << cam1;
+  test::write_tum_fixture(dir.path(), 3);
+  fs::copy(dir.path() / "rgbd_dataset_freiburg3_test", seq, fs::copy_options::recursive);
+
+  Settings rgbd = mono_settings();
+  EXPECT_EQ(open_dataset(seq, rgbd)->kind(), "tum");
+  Settings stereo = mono_settings();
+  stereo.stereo = StereoCalibration{};  // any stereo description
+  stereo.stereo->rectified = true;
+  const auto d = open_dataset(seq, stereo);
+  ASSERT_EQ(d->kind(), "euroc");
+  const auto rect = d->rectified_stereo();
+  EXPECT_NEAR(rect->left.fx, 450.0, 1e-6);
+  EXPECT_NEAR(rect->left.cx, 375.5, 1e-6);
+  EXPECT_NEAR(rect->left.cy, 239.5, 1e-6);
+  EXPECT_NEAR(rect->baseline, 0.12, 1e-9);
+  // Remapping is the identity.
+  const SensorFrame f = d->load(0);
+  const cv::Mat raw = cv::imread((seq / "mav0/cam0/data" / f.name).string(), cv::IMREAD_GRAYSCALE);
+  cv::Mat diff;
+  cv::absdiff(f.gray, raw, diff);
+  EXPECT_EQ(cv::countNonZero(diff), 0);
+}
+
+}  // namespace
+}  // namespace stillslam

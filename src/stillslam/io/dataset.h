@@ -1,6 +1,9 @@
 #pragma once
 // Random-access readers for image datasets (TUM RGB-D, EuRoC, KITTI odometry).
-// open_dataset() detects the layout from the folder contents.
+// open_dataset() detects the layout from the folder contents (or takes a TUM
+// association file as the path); a folder holding both a TUM and an EuRoC
+// layout is read as EuRoC stereo when the settings describe a stereo pair,
+// else as TUM RGB-D.
 //
 // Bad frames: by default load() throws stillslam::Error naming the file (missing
 // image, unreadable or truncated PNG, 8-bit depth). With

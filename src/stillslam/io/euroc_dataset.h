@@ -34,7 +34,8 @@ class EurocDataset : public FileDataset {
   // `mav0` is the folder holding cam0/, cam1/ (and imu0/). The raw stereo
   // calibration comes from Settings when it describes an unrectified pair
   // (Camera2.* + Stereo.T_c1_c2, or LEFT/RIGHT blocks), else from the
-  // sensor.yaml files (T_c1_c2 = inv(T_BS_cam0) * T_BS_cam1).
+  // sensor.yaml files (T_c1_c2 = inv(T_BS_cam0) * T_BS_cam1). For an already
+  // rectified pair (zero distortion, parallel cameras) the remap is the identity.
   EurocDataset(const std::filesystem::path& mav0, const Settings& settings, const DatasetOptions& options);
 
   std::string kind() const override { return "euroc"; }
