@@ -120,6 +120,18 @@ TEST(Trajectory, TumQuaternionsAreNormalised) {
               0.0, 1e-12);
 }
 
+TEST(Trajectory, ToleratesCrlfPaddingAndHeaderlessCsv) {
+  const Trajectory crlf = read_trajectory(write_text("crlf.txt", "# t x y z qx qy qz qw\r\n1.5 1 2 3 0 0 0 1\r\n"));
+  ASSERT_EQ(crlf.size(), 1u);
+  EXPECT_EQ(crlf[0].timestamp, 1.5);
+  const fs::path csv = write_text("padded.csv", "timestamp, x, y, z, qw, qx, qy, qz\n1000000000, 1, 2, 3, 1, 0, 0, 0\n");
+  EXPECT_EQ(detect_trajectory_format(csv), TrajectoryFormat::Euroc);
+  const Trajectory padded = read_trajectory(csv);
+  ASSERT_EQ(padded.size(), 1u);
+  EXPECT_EQ(padded[0].timestamp, 1.0);
+  EXPECT_EQ(padded[0].T_world_cam.translation(), Eigen::Vector3d(1, 2, 3));
+}
+
 TEST(Trajectory, MalformedLineNamesFileAndLine) {
   const fs::path path = write_text("broken.txt", "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 0 zero 0 0 0 1\n");
   try {

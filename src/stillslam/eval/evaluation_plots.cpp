@@ -1,6 +1,10 @@
 #include "stillslam/eval/evaluation_plots.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdio>
+#include <limits>
+#include <vector>
 #include <fstream>
 
 #include "stillslam/core/error.h"
@@ -14,6 +18,29 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   out << text;
   out.flush();
   if (!out) throw Error("cannot write plot " + path.string() + "; check that its folder exists and is writable");
+}
+
+// Indices k where the associated sequence has a hole before pose k (tracking
+// lost or poses missing): more than ten times the median step and 0.5 s.
+std::vector<bool> gap_before(const Trajectory& poses) {
+  std::vector<bool> gaps(poses.size(), false);
+  if (poses.size() < 3) return gaps;
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < poses.size(); ++k) steps.push_back(poses[k].timestamp - poses[k - 1].timestamp);
+  std::vector<double> sorted(steps);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+  const double limit = std::max(10.0 * sorted[sorted.size() / 2], 0.5);
+  for (std::size_t k = 1; k < poses.size(); ++k) gaps[k] = steps[k - 1] > limit;
+  return gaps;
+}
+
+void add_point(PlotSeries& series, bool gap, double x, double y) {
+  if (gap) {
+    series.x.push_back(std::numeric_limits<double>::quiet_NaN());
+    series.y.push_back(std::numeric_limits<double>::quiet_NaN());
+  }
+  series.x.push_back(x);
+  series.y.push_back(y);
 }
 
 }  // namespace
@@ -35,13 +62,12 @@ std::string trajectory_view_svg(const EvaluationResult& result) {
 
   PlotSeries gt{"ground truth", "#444444", {}, {}, true};
   PlotSeries est{"estimate (" + to_string(result.alignment.type) + " aligned)", "#1f77b4", {}, {}, false};
-  for (const StampedPose& p : result.gt) {
-    gt.x.push_back(p.T_world_cam.translation()[axes[0]]);
-    gt.y.push_back(p.T_world_cam.translation()[axes[1]]);
-  }
-  for (const StampedPose& p : result.est_aligned) {
-    est.x.push_back(p.T_world_cam.translation()[axes[0]]);
-    est.y.push_back(p.T_world_cam.translation()[axes[1]]);
+  const std::vector<bool> gaps = gap_before(result.gt);
+  for (std::size_t k = 0; k < result.gt.size(); ++k) {
+    const Eigen::Vector3d g = result.gt[k].T_world_cam.translation();
+    const Eigen::Vector3d e = result.est_aligned[k].T_world_cam.translation();
+    add_point(gt, gaps[k], g[axes[0]], g[axes[1]]);
+    add_point(est, gaps[k], e[axes[0]], e[axes[1]]);
   }
   PlotOptions options;
   options.title = "trajectory (" + std::to_string(result.pairs) + " associated poses)";
@@ -52,12 +78,13 @@ std::string trajectory_view_svg(const EvaluationResult& result) {
 }
 
 std::string ape_over_time_svg(const EvaluationResult& result) {
-  PlotSeries ape{"APE", "#d62728", {}, result.ape, false};
+  PlotSeries ape{"APE", "#d62728", {}, {}, false};
   const double t0 = result.gt.empty() ? 0.0 : result.gt.front().timestamp;
-  for (const StampedPose& p : result.gt) ape.x.push_back(p.timestamp - t0);
+  const std::vector<bool> gaps = gap_before(result.gt);
+  for (std::size_t k = 0; k < result.gt.size(); ++k) add_point(ape, gaps[k], result.gt[k].timestamp - t0, result.ape[k]);
   PlotSeries rmse{"rmse", "#444444", {}, {}, true};
-  if (!ape.x.empty()) {
-    rmse.x = {ape.x.front(), ape.x.back()};
+  if (!result.gt.empty()) {
+    rmse.x = {0.0, result.gt.back().timestamp - t0};
     rmse.y = {result.ape_stats.rmse, result.ape_stats.rmse};
   }
   char title[128];

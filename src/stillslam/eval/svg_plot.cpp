@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace stillslam {
 namespace {
@@ -124,14 +126,27 @@ std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOp
          escape(options.y_label) + "</text>\n";
 
   for (const PlotSeries& s : series) {
-    std::string points;
+    // A non-finite point ends one polyline and starts the next (gaps in tracking).
+    std::vector<std::string> runs(1);
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-      points += num(px(s.x[i])) + "," + num(py(s.y[i])) + " ";
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+        if (!runs.back().empty()) runs.emplace_back();
+        continue;
+      }
+      runs.back() += num(px(s.x[i])) + "," + num(py(s.y[i])) + " ";
     }
-    svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1.5\"" +
-           (s.dashed ? " stroke-dasharray=\"6,4\"" : "") + " points=\"" + points + "\"/>\n";
+    for (const std::string& points : runs) {
+      if (points.empty()) continue;
+      svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1.5\"" +
+             (s.dashed ? " stroke-dasharray=\"6,4\"" : "") + " points=\"" + points + "\"/>\n";
+    }
   }
+  // Legend on a translucent box so it stays readable over the data.
+  std::size_t longest = 0;
+  for (const PlotSeries& s : series) longest = std::max(longest, s.label.size());
+  svg += "<rect x=\"" + num(kLeft + 4) + "\" y=\"" + num(kTop + 4) + "\" width=\"" +
+         num(44 + 7.0 * static_cast<double>(longest)) + "\" height=\"" + num(8 + 16.0 * static_cast<double>(series.size())) +
+         "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
   double legend_y = kTop + 16;
   for (const PlotSeries& s : series) {
     svg += "<line x1=\"" + num(kLeft + 10) + "\" y1=\"" + num(legend_y - 4) + "\" x2=\"" + num(kLeft + 34) +

@@ -23,7 +23,8 @@ struct PlotOptions {
   bool equal_axes = false;  // same metres per pixel on both axes (trajectory views)
 };
 
-// A self-contained SVG document. Non-finite points are skipped.
+// A self-contained SVG document. A non-finite point breaks a series into
+// separate polylines (no line is drawn across it).
 std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOptions& options);
 
 }  // namespace stillslam
