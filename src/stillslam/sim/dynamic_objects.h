@@ -1,0 +1,56 @@
+#pragma once
+// Everything that moves: people (RGBA billboards at human height, always
+// facing the camera, walking back and forth across the view with a little
+// bob and sway), people standing still, and a box carried across the desk.
+// Each gets its own Quad::dynamic_id so masks can be told apart.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "stillslam/sim/quad.h"
+#include "stillslam/sim/scene_layout.h"
+
+namespace stillslam::sim {
+
+struct PersonTrack {
+  int texture = 0;               // renderer texture index of the cut-out
+  double height = 1.7;           // metres
+  double aspect = 0.4;           // cut-out width / height
+  Eigen::Vector2d a, b;          // walking between these floor points (scene frame)
+  double speed = 1.0;            // m/s
+  double pause = 2.0;            // seconds out of view at each end
+  double offset = 0.0;           // seconds into the back-and-forth cycle at t = 0
+  bool still = false;            // stands at `a`, only sways
+  std::uint16_t id = 1;
+};
+
+struct DynamicObjectsOptions {
+  int walking = 2;
+  int still = 0;
+  bool moved_box = false;
+  double duration = 10.0;        // seconds; the box moves at 40% of it
+};
+
+class DynamicObjects {
+ public:
+  // cutout_textures: renderer texture indices of the cut-outs; cutout_sizes: their pixel sizes.
+  DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
+                 const std::vector<int>& cutout_textures, const std::vector<cv::Size>& cutout_sizes,
+                 const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
+
+  // Quads at time t (seconds since the start); billboards face camera_world.
+  std::vector<Quad> quads_at(double t, const Eigen::Vector3d& camera_world) const;
+  const std::vector<PersonTrack>& people() const { return people_; }
+
+ private:
+  Eigen::Vector3d person_foot(const PersonTrack& p, double t) const;  // scene frame
+
+  DynamicObjectsOptions options_;
+  Eigen::Isometry3d T_world_scene_;
+  std::vector<PersonTrack> people_;
+  std::vector<Quad> box_;        // the movable box in scene frame at its start, resting
+  std::uint16_t box_id_ = 0;
+};
+
+}  // namespace stillslam::sim

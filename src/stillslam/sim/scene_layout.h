@@ -1,0 +1,51 @@
+#pragma once
+// The static office-like room every sequence is shot in, built in the scene
+// frame: z up, floor at z = -1.4 (camera height ~1.4 m), the camera's mean
+// position at the origin looking along +y. Surfaces lie 1-4 m from the camera
+// like in the TUM fr3 office. Every surface is tiled with photo panels so ORB
+// finds corners wherever the camera looks.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "stillslam/sim/camera_motion.h"
+#include "stillslam/sim/quad.h"
+
+namespace stillslam::sim {
+
+struct SceneLayout {
+  static constexpr double kFloorZ = -1.4, kCeilingZ = 1.3;
+  static constexpr double kMinX = -2.6, kMaxX = 2.6, kMinY = -2.2, kMaxY = 3.8;
+  static constexpr double kDeskTopZ = -0.65;
+  static Eigen::Vector3d desk_centre() { return {0.0, 1.9, kDeskTopZ}; }
+};
+
+// Where the scene frame sits in the trajectory's world frame. Generated paths
+// live in the scene frame (identity). Replayed files: origin at the mean camera
+// position over the first `seconds` of the path, up = minus the mean camera
+// y axis (image down), forward = the mean optical axis made horizontal.
+Eigen::Isometry3d scene_frame_for(const CameraMotion& motion, double seconds);
+
+// Photo panels picked from `texture_sizes` (index = texture id) by `seed`.
+std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
+                                     const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
+
+// Helpers shared with the dynamic objects.
+class PanelPainter {
+ public:
+  PanelPainter(const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
+  // A quad with a random texture crop whose aspect matches the panel (no stretching).
+  Quad panel(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis_u,
+             const Eigen::Vector3d& axis_v, float brightness_min = 0.85f,
+             float brightness_max = 1.05f);
+  // The five visible faces (no bottom) of an axis-aligned box.
+  void box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<Quad>& out);
+  double uniform(double a, double b);
+
+ private:
+  std::vector<cv::Size> sizes_;
+  std::uint64_t state_;
+};
+
+}  // namespace stillslam::sim

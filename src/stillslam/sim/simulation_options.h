@@ -1,0 +1,43 @@
+#pragma once
+// Everything that defines a synthetic sequence. Two runs with equal options
+// produce byte-identical files (the seed drives every random choice).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "stillslam/geometry/camera_calibration.h"
+
+namespace stillslam::sim {
+
+struct SimulationOptions {
+  // Camera path: "walking_xyz" (TUM fr3/walking_xyz ground truth replayed),
+  // "halfsphere", "rpy", "static", or the path of a TUM trajectory file.
+  std::string trajectory = "walking_xyz";
+  int frames = 300;            // at most this many frames (file trajectories may be shorter)
+  double fps = 30.0;
+  int width = 640, height = 480;
+  // Pinhole like TUM fr3 (scaled with the image size when width/height change).
+  double fx = 535.4, fy = 539.2, cx = 320.1, cy = 247.6;
+
+  std::uint64_t seed = 0;
+  int people = 2;              // walking people
+  int still_people = 0;        // people standing (almost) still in view
+  bool moved_object = false;   // a box on the desk is picked up and carried away
+  bool no_people = false;      // drop every dynamic thing (static reference run)
+
+  bool stereo = false;         // also write a rectified EuRoC-layout stereo pair
+  double baseline = 0.1;       // metres, stereo only
+  int noise = 0;               // 0 none, 1 realistic, 2 heavy
+  int supersampling = 2;       // rays per pixel per axis for colour
+
+  // Folder with textures/ and cutouts/ (the repo's data/). Empty: found via
+  // find_data_dir().
+  std::filesystem::path data_dir;
+  // Written into settings.yaml as Segmentation.model. Empty: <data_dir>/../models/yolo11n-seg_384x512.onnx.
+  std::filesystem::path segmentation_model;
+};
+
+// The intrinsics the options describe, at the options' image size.
+CameraCalibration camera_from_options(const SimulationOptions& options);
+
+}  // namespace stillslam::sim

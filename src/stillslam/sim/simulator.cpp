@@ -1,0 +1,123 @@
+#include "stillslam/sim/simulator.h"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "stillslam/core/error.h"
+#include "stillslam/sim/assets.h"
+#include "stillslam/sim/scene_layout.h"
+
+namespace stillslam::sim {
+
+CameraCalibration camera_from_options(const SimulationOptions& o) {
+  if (o.width < 16 || o.height < 16) throw Error("--width/--height must be at least 16 pixels");
+  CameraCalibration c;
+  const double sx = o.width / 640.0, sy = o.height / 480.0;
+  c.fx = o.fx * sx;
+  c.fy = o.fy * sy;
+  // Pixel-centre convention: scale the continuous image, then shift back.
+  c.cx = (o.cx + 0.5) * sx - 0.5;
+  c.cy = (o.cy + 0.5) * sy - 0.5;
+  c.width = o.width;
+  c.height = o.height;
+  return c;
+}
+
+Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
+  if (options_.frames < 1) throw Error("--frames must be at least 1");
+  if (options_.fps <= 0) throw Error("fps must be positive");
+  if (options_.data_dir.empty()) options_.data_dir = find_data_dir();
+  noise_ = noise_model(options_.noise);
+  motion_ = CameraMotion::create(options_.trajectory, options_.data_dir, options_.seed);
+  const double available = std::floor(motion_.duration() * options_.fps + 1e-9) + 1;
+  frames_ = static_cast<int>(std::min<double>(options_.frames, available));
+  const double seconds = (frames_ - 1) / options_.fps;
+  T_world_scene_ = scene_frame_for(motion_, seconds);
+
+  const AssetLibrary assets = load_assets(options_.data_dir);
+  std::vector<MipTexture> textures;
+  std::vector<cv::Size> texture_sizes, cutout_sizes;
+  std::vector<int> cutout_ids;
+  for (const auto& t : assets.textures) {
+    textures.emplace_back(t);
+    texture_sizes.push_back(t.size());
+  }
+  for (const auto& c : assets.cutouts) {
+    cutout_ids.push_back(static_cast<int>(textures.size()));
+    textures.emplace_back(c);
+    cutout_sizes.push_back(c.size());
+  }
+  renderer_ = std::make_unique<Renderer>(camera_from_options(options_), std::move(textures));
+  static_quads_ = build_static_scene(T_world_scene_, texture_sizes, options_.seed);
+  DynamicObjectsOptions dyn;
+  dyn.walking = options_.no_people ? 0 : std::max(0, options_.people);
+  dyn.still = options_.no_people ? 0 : std::max(0, options_.still_people);
+  dyn.moved_box = options_.moved_object;
+  dyn.duration = seconds;
+  dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, cutout_ids, cutout_sizes,
+                                              texture_sizes, options_.seed);
+}
+
+Eigen::Isometry3d Simulator::T_left_right() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation().x() = options_.baseline;
+  return T;
+}
+
+std::int64_t Simulator::stamp_ns(int index) const {
+  return motion_.start_ns() + std::llround(index * 1e6 / options_.fps) * 1000LL;
+}
+
+Eigen::Isometry3d Simulator::pose(int index) const {
+  return motion_.pose_at((stamp_ns(index) - motion_.start_ns()) * 1e-9);
+}
+
+std::vector<Quad> Simulator::quads_at(double t, const Eigen::Vector3d& camera_world) const {
+  std::vector<Quad> quads = static_quads_;
+  // The static reference run keeps the movable box where it rests at t = 0.
+  const double t_dyn = options_.no_people ? 0.0 : t;
+  for (Quad& q : dynamic_->quads_at(t_dyn, camera_world)) quads.push_back(q);
+  return quads;
+}
+
+SimFrame Simulator::render_frame(int index) const {
+  if (index < 0 || index >= frames_) {
+    throw Error("sim: frame " + std::to_string(index) + " out of range [0, " + std::to_string(frames_) + ")");
+  }
+  SimFrame f;
+  f.index = index;
+  f.stamp_ns = stamp_ns(index);
+  f.timestamp = static_cast<double>(f.stamp_ns) * 1e-9;
+  const double t = (f.stamp_ns - motion_.start_ns()) * 1e-9;
+  f.T_world_cam = motion_.pose_at(t);
+  const std::vector<Quad> quads = quads_at(t, f.T_world_cam.translation());
+
+  auto exposure = [&](const Eigen::Isometry3d& offset) {
+    std::vector<Eigen::Isometry3d> poses;
+    const int n = noise_.exposure_samples;
+    for (int k = 0; k < n && n > 1; ++k) {
+      const double dt = (static_cast<double>(k) / (n - 1) - 0.5) * noise_.exposure_fraction / options_.fps;
+      poses.push_back(motion_.pose_at(t + dt) * offset);
+    }
+    return poses;
+  };
+  const RenderedView view = renderer_->render_blurred(quads, f.T_world_cam,
+                                                      exposure(Eigen::Isometry3d::Identity()),
+                                                      options_.supersampling);
+  // One RNG stream per frame: frames can be rendered in any order, same bytes.
+  cv::RNG rng(options_.seed * 1000003ULL + static_cast<std::uint64_t>(index) * 7919ULL + 1);
+  f.bgr = apply_image_noise(view.bgr, noise_, rng);
+  f.depth = apply_depth_noise(view.depth, noise_, rng);
+  f.dynamic_ids = view.dynamic_ids;
+  f.mask = view.mask();
+  if (options_.stereo) {
+    const Eigen::Isometry3d T_right = f.T_world_cam * T_left_right();
+    const RenderedView right = renderer_->render_blurred(quads, T_right, exposure(T_left_right()),
+                                                         options_.supersampling);
+    cv::Mat bgr8 = apply_image_noise(right.bgr, noise_, rng);
+    cv::cvtColor(bgr8, f.right_gray, cv::COLOR_BGR2GRAY);
+  }
+  return f;
+}
+
+}  // namespace stillslam::sim
