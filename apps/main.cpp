@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   CLI::App app{"stillslam: feature-based visual SLAM that ignores moving people and objects"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "stillslam 0.1");
+  stillslam::apps::add_run_command(app);
   stillslam::apps::add_eval_command(app);
   stillslam::apps::add_simulate_command(app);
   try {

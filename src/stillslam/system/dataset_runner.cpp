@@ -1,0 +1,64 @@
+#include "stillslam/system/dataset_runner.h"
+
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "stillslam/core/error.h"
+#include "stillslam/core/stopwatch.h"
+
+namespace stillslam {
+
+RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options) {
+  RunResult out;
+  Stopwatch wall;
+  System system(settings, dataset.sensor(), dataset.rectified_stereo(), options.system);
+  std::size_t n = dataset.size();
+  if (options.max_frames) n = std::min(n, *options.max_frames);
+
+  auto load = [&dataset](std::size_t i) { return dataset.load(i); };
+  std::future<SensorFrame> next;
+  if (n > 0) next = std::async(std::launch::async, load, 0);
+  const double t0 = n > 0 ? dataset.timestamp(0) : 0.0;
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      SensorFrame frame = next.get();
+      if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
+      if (options.stop != nullptr && options.stop->load()) {
+        out.interrupted = true;
+        break;
+      }
+      if (options.realtime) {
+        const double due = dataset.timestamp(i) - t0;
+        const double now = wall.elapsed_ms() / 1000.0;
+        if (i + 1 < n && now > dataset.timestamp(i + 1) - t0) {
+          ++out.dropped_frames;
+          continue;
+        }
+        if (due > now) std::this_thread::sleep_for(std::chrono::duration<double>(due - now));
+      }
+      if (!frame.valid) continue;
+      FrameStats stats = system.process(frame);
+      if (options.on_frame) options.on_frame(stats, system);
+      out.frames.push_back(std::move(stats));
+    }
+  } catch (const Error& e) {
+    out.error = e.what();
+  }
+  if (next.valid()) {
+    try {
+      next.wait();
+    } catch (...) {
+    }
+  }
+  system.shutdown();
+  out.trajectory = system.trajectory();
+  out.keyframes = system.keyframe_trajectory();
+  out.mapper = system.mapper_stats();
+  out.map_points = system.num_map_points();
+  out.skipped_frames = dataset.skipped_frames();
+  out.wall_seconds = wall.elapsed_ms() / 1000.0;
+  return out;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,44 @@
+#pragma once
+// Runs a whole dataset through a System: loads frames ahead on a helper
+// thread, optionally paces them like a live camera, reports each frame to a
+// callback (live trajectory, progress), stops on request, and always returns
+// what it has (an input error ends the run but keeps the trajectory so far).
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stillslam/io/dataset.h"
+#include "stillslam/system/system.h"
+
+namespace stillslam {
+
+struct RunOptions {
+  SystemOptions system;
+  std::optional<std::size_t> max_frames;
+  // Pace frames by their timestamps; frames whose time has passed while the
+  // system was busy are dropped, as with a live camera.
+  bool realtime = false;
+  const std::atomic<bool>* stop = nullptr;  // checked before each frame
+  std::function<void(const FrameStats&, const System&)> on_frame;
+};
+
+struct RunResult {
+  std::vector<FrameStats> frames;
+  Trajectory trajectory;  // final estimate, every tracked frame
+  Trajectory keyframes;
+  LocalMapperStats mapper;
+  std::size_t dropped_frames = 0;  // realtime mode
+  std::size_t skipped_frames = 0;  // unreadable frames skipped by the dataset
+  bool interrupted = false;
+  std::optional<std::string> error;  // the Error that ended the run early
+  double wall_seconds = 0;
+  std::size_t map_points = 0;
+};
+
+// Construction errors (bad settings for this sensor, model) throw; errors
+// while reading frames end the run and are returned in `error`.
+RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options);
+
+}  // namespace stillslam

@@ -1,0 +1,26 @@
+#pragma once
+// What happened to one input frame (for stats.json and summaries).
+#include <cstddef>
+#include <string>
+
+#include "stillslam/tracking/frame_builder.h"
+#include "stillslam/tracking/tracking_state.h"
+
+namespace stillslam {
+
+struct FrameStats {
+  std::size_t index = 0;
+  double timestamp = 0;
+  TrackingState state = TrackingState::NotInitialized;
+  std::string reason;
+  FrameBuildStats build;   // features before/after the filter, detections, mask, times
+  int matches = 0;
+  int inliers = 0;
+  bool keyframe = false;
+  double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
+  double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)
+  double total_ms = 0;     // frame builder + tracker (+ synchronous mapping)
+  bool has_pose = false;
+};
+
+}  // namespace stillslam

@@ -1,0 +1,109 @@
+#include "stillslam/system/run_summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace stillslam {
+
+TimingSummary summarize_times(std::vector<double> v) {
+  TimingSummary t;
+  if (v.empty()) return t;
+  std::sort(v.begin(), v.end());
+  t.mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+  const std::size_t n = v.size();
+  t.median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  t.p95 = v[std::min(n - 1, static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1)];
+  t.max = v.back();
+  return t;
+}
+
+RunSummary summarize_run(const std::vector<FrameStats>& frames) {
+  RunSummary s;
+  s.frames = frames.size();
+  std::vector<double> total, tracking, extraction, wait;
+  double before = 0, after = 0, inliers = 0;
+  for (const FrameStats& f : frames) {
+    s.tracked += f.has_pose ? 1 : 0;
+    s.lost += f.state == TrackingState::Lost ? 1 : 0;
+    s.keyframes_inserted += f.keyframe ? 1 : 0;
+    total.push_back(f.total_ms);
+    tracking.push_back(f.tracking_ms);
+    extraction.push_back(f.build.extraction_ms);
+    wait.push_back(f.build.segmentation_wait_ms);
+    before += f.build.keypoints_before;
+    after += f.build.keypoints_after;
+    inliers += f.inliers;
+  }
+  s.total_ms = summarize_times(total);
+  s.tracking_ms = summarize_times(tracking);
+  s.extraction_ms = summarize_times(extraction);
+  s.segmentation_wait_ms = summarize_times(wait);
+  s.extraction_share = s.total_ms.mean > 0 ? s.extraction_ms.mean / s.total_ms.mean : 0;
+  if (!frames.empty()) {
+    const double n = static_cast<double>(frames.size());
+    s.mean_keypoints_before = before / n;
+    s.mean_keypoints_after = after / n;
+    s.mean_inliers = inliers / n;
+  }
+  return s;
+}
+
+nlohmann::json to_json(const FrameStats& f) {
+  return {{"index", f.index},
+          {"timestamp", f.timestamp},
+          {"state", to_string(f.state)},
+          {"reason", f.reason},
+          {"has_pose", f.has_pose},
+          {"keyframe", f.keyframe},
+          {"features_before_filter", f.build.keypoints_before},
+          {"features_after_filter", f.build.keypoints_after},
+          {"features_with_depth", f.build.keypoints_with_depth},
+          {"matches", f.matches},
+          {"inliers", f.inliers},
+          {"detections", f.build.detections},
+          {"mask_coverage", f.build.mask_coverage},
+          {"times_ms",
+           {{"extraction", f.build.extraction_ms},
+            {"segmentation", f.build.segmentation_ms},
+            {"segmentation_wait", f.build.segmentation_wait_ms},
+            {"association", f.build.association_ms},
+            {"frame_build", f.build.total_ms},
+            {"tracking", f.tracking_ms},
+            {"mapping_inline", f.mapping_ms},
+            {"total", f.total_ms}}}};
+}
+
+nlohmann::json to_json(const TimingSummary& t) {
+  return {{"mean", t.mean}, {"median", t.median}, {"p95", t.p95}, {"max", t.max}};
+}
+
+nlohmann::json to_json(const RunSummary& s) {
+  return {{"frames", s.frames},
+          {"tracked", s.tracked},
+          {"tracked_ratio", s.tracked_ratio()},
+          {"lost", s.lost},
+          {"keyframes_inserted", s.keyframes_inserted},
+          {"mean_features_before_filter", s.mean_keypoints_before},
+          {"mean_features_after_filter", s.mean_keypoints_after},
+          {"mean_inliers", s.mean_inliers},
+          {"times_ms",
+           {{"total", to_json(s.total_ms)},
+            {"tracking", to_json(s.tracking_ms)},
+            {"extraction", to_json(s.extraction_ms)},
+            {"segmentation_wait", to_json(s.segmentation_wait_ms)}}},
+          {"extraction_share", s.extraction_share}};
+}
+
+nlohmann::json to_json(const LocalMapperStats& s) {
+  return {{"keyframes", s.keyframes},
+          {"points_created", s.points_created},
+          {"points_culled", s.points_culled},
+          {"keyframes_culled", s.keyframes_culled},
+          {"bundle_adjustments", s.bundle_adjustments},
+          {"bundle_adjustments_aborted", s.bundle_adjustments_aborted},
+          {"bundle_adjustment_ms_total", s.bundle_adjustment_ms},
+          {"total_ms", s.total_ms}};
+}
+
+}  // namespace stillslam
