@@ -1,5 +1,6 @@
 #include "stillslam/features/brief_descriptor.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -9,26 +10,38 @@ void compute_brief(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& key
                    const BriefPattern& pattern, cv::Mat& descriptors, int row_offset) {
   CV_Assert(smoothed.type() == CV_8UC1 && descriptors.type() == CV_8UC1 && descriptors.cols == 32 &&
             descriptors.rows >= row_offset + static_cast<int>(keypoints.size()));
+  constexpr int kPoints = 2 * BriefPattern::kNumPairs;
+  // Pattern as separate float coordinate arrays (point 2i, 2i+1 = pair i), so
+  // the per-keypoint rotation below is a straight vectorizable loop.
+  std::array<float, kPoints> px{}, py{};
+  for (int i = 0; i < BriefPattern::kNumPairs; ++i) {
+    const BriefPair& p = pattern.pairs[static_cast<std::size_t>(i)];
+    px[static_cast<std::size_t>(2 * i)] = p.x1;
+    py[static_cast<std::size_t>(2 * i)] = p.y1;
+    px[static_cast<std::size_t>(2 * i + 1)] = p.x2;
+    py[static_cast<std::size_t>(2 * i + 1)] = p.y2;
+  }
   const int step = static_cast<int>(smoothed.step1());
+  std::array<int, kPoints> offset{};
   for (std::size_t k = 0; k < keypoints.size(); ++k) {
     const cv::KeyPoint& kp = keypoints[k];
     const double angle = kp.angle * std::numbers::pi / 180.0;
     const float c = static_cast<float>(std::cos(angle)), s = static_cast<float>(std::sin(angle));
+    // Rotated sample offsets R(angle) * (x, y), rounded to pixels.
+    for (int i = 0; i < kPoints; ++i) {
+      const float rx = px[static_cast<std::size_t>(i)] * c - py[static_cast<std::size_t>(i)] * s;
+      const float ry = px[static_cast<std::size_t>(i)] * s + py[static_cast<std::size_t>(i)] * c;
+      offset[static_cast<std::size_t>(i)] = cvRound(ry) * step + cvRound(rx);
+    }
     const std::uint8_t* center = smoothed.ptr<std::uint8_t>(cvRound(kp.pt.y)) + cvRound(kp.pt.x);
-    // Rotated sample offset (x, y) -> R(angle) * (x, y), rounded to a pixel.
-    auto sample = [&](int x, int y) {
-      const int rx = cvRound(static_cast<float>(x) * c - static_cast<float>(y) * s);
-      const int ry = cvRound(static_cast<float>(x) * s + static_cast<float>(y) * c);
-      return center[ry * step + rx];
-    };
     std::uint8_t* out = descriptors.ptr<std::uint8_t>(row_offset + static_cast<int>(k));
-    for (int byte = 0; byte < 32; ++byte) {
-      std::uint8_t value = 0;
+    const int* o = offset.data();
+    for (int byte = 0; byte < 32; ++byte, o += 16) {
+      unsigned value = 0;
       for (int bit = 0; bit < 8; ++bit) {
-        const BriefPair& p = pattern.pairs[static_cast<std::size_t>(byte * 8 + bit)];
-        if (sample(p.x1, p.y1) < sample(p.x2, p.y2)) value |= static_cast<std::uint8_t>(1u << bit);
+        value |= static_cast<unsigned>(center[o[2 * bit]] < center[o[2 * bit + 1]]) << bit;
       }
-      out[byte] = value;
+      out[byte] = static_cast<std::uint8_t>(value);
     }
   }
 }

@@ -7,15 +7,12 @@ namespace stillslam {
 
 std::vector<cv::KeyPoint> detect_fast_in_cells(const cv::Mat& image, const FastCellOptions& options) {
   // cv::FAST never reports corners within 3 px of the image it is given, so
-  // every cell's ROI is grown by 3 px on each side: interiors tile the region
-  // exactly and neighbouring cells cannot report the same pixel.
+  // every ROI is grown by 3 px on each side of the area whose corners we want.
   constexpr int kFastMargin = 3;
   std::vector<cv::KeyPoint> corners;
-  const int min_x = options.border - kFastMargin, min_y = options.border - kFastMargin;
-  const int max_x = image.cols - options.border + kFastMargin;
-  const int max_y = image.rows - options.border + kFastMargin;
-  const int width = max_x - min_x - 2 * kFastMargin;   // interior extent
-  const int height = max_y - min_y - 2 * kFastMargin;
+  const int x0 = options.border, y0 = options.border;  // interior: [x0, x1) x [y0, y1)
+  const int x1 = image.cols - options.border, y1 = image.rows - options.border;
+  const int width = x1 - x0, height = y1 - y0;
   if (width <= 0 || height <= 0) return corners;
 
   const int n_cols = std::max(1, width / options.cell_size);
@@ -23,24 +20,38 @@ std::vector<cv::KeyPoint> detect_fast_in_cells(const cv::Mat& image, const FastC
   const int cell_w = (width + n_cols - 1) / n_cols;
   const int cell_h = (height + n_rows - 1) / n_rows;
 
+  // Common case first: one FAST pass with the initial threshold over the
+  // whole interior (cheaper than one call per cell, and non-maximum
+  // suppression is not cut at cell borders). Every cell that got nothing is
+  // then searched again with the low threshold.
+  const cv::Mat interior = image(cv::Range(y0 - kFastMargin, y1 + kFastMargin),
+                                 cv::Range(x0 - kFastMargin, x1 + kFastMargin));
+  cv::FAST(interior, corners, options.ini_threshold, true);
+  std::vector<int> per_cell(static_cast<std::size_t>(n_cols * n_rows), 0);
+  for (auto& kp : corners) {
+    kp.pt.x += static_cast<float>(x0 - kFastMargin);
+    kp.pt.y += static_cast<float>(y0 - kFastMargin);
+    const int c = std::min(n_cols - 1, (static_cast<int>(kp.pt.x) - x0) / cell_w);
+    const int r = std::min(n_rows - 1, (static_cast<int>(kp.pt.y) - y0) / cell_h);
+    ++per_cell[static_cast<std::size_t>(r * n_cols + c)];
+  }
+  if (options.min_threshold >= options.ini_threshold) return corners;
+
   std::vector<cv::KeyPoint> cell_corners;
   for (int r = 0; r < n_rows; ++r) {
-    const int y0 = min_y + r * cell_h;
-    const int y1 = std::min(y0 + cell_h + 2 * kFastMargin, max_y);
-    if (y1 - y0 <= 2 * kFastMargin) continue;
+    const int cy0 = y0 + r * cell_h, cy1 = std::min(cy0 + cell_h, y1);
+    if (cy1 <= cy0) continue;
     for (int c = 0; c < n_cols; ++c) {
-      const int x0 = min_x + c * cell_w;
-      const int x1 = std::min(x0 + cell_w + 2 * kFastMargin, max_x);
-      if (x1 - x0 <= 2 * kFastMargin) continue;
-      const cv::Mat cell = image(cv::Range(y0, y1), cv::Range(x0, x1));
+      if (per_cell[static_cast<std::size_t>(r * n_cols + c)] > 0) continue;
+      const int cx0 = x0 + c * cell_w, cx1 = std::min(cx0 + cell_w, x1);
+      if (cx1 <= cx0) continue;
+      const cv::Mat cell = image(cv::Range(cy0 - kFastMargin, cy1 + kFastMargin),
+                                 cv::Range(cx0 - kFastMargin, cx1 + kFastMargin));
       cell_corners.clear();
-      cv::FAST(cell, cell_corners, options.ini_threshold, true);
-      if (cell_corners.empty() && options.min_threshold < options.ini_threshold) {
-        cv::FAST(cell, cell_corners, options.min_threshold, true);
-      }
+      cv::FAST(cell, cell_corners, options.min_threshold, true);
       for (auto& kp : cell_corners) {
-        kp.pt.x += static_cast<float>(x0);
-        kp.pt.y += static_cast<float>(y0);
+        kp.pt.x += static_cast<float>(cx0 - kFastMargin);
+        kp.pt.y += static_cast<float>(cy0 - kFastMargin);
         corners.push_back(kp);
       }
     }

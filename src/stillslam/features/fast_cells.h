@@ -17,8 +17,9 @@ struct FastCellOptions {
   int border = 16;
 };
 
-// Corners in `image` (CV_8UC1) coordinates, within [border, size - border).
-// Order: cells row-major, then cv::FAST order; no duplicates.
+// Corners in `image` (CV_8UC1) coordinates, within [border, size - border):
+// all corners at the initial threshold, then the low-threshold corners of
+// each cell that had none. Deterministic order; no duplicates.
 std::vector<cv::KeyPoint> detect_fast_in_cells(const cv::Mat& image, const FastCellOptions& options);
 
 }  // namespace stillslam
