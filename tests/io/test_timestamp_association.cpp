@@ -37,26 +37,29 @@ TEST(TimestampAssociation, UnsortedInputs) {
   EXPECT_EQ(m[2], (std::pair<std::size_t, std::size_t>{2, 0}));
 }
 
-std::filesystem::path frame_list(const std::string& name) {
-  return std::filesystem::path(STILLSLAM_SHARED_DIR) / "data" / "frame_lists" / "tum" / name;
+std::filesystem::path frame_list(const std::string& name, const std::string& set = "tum") {
+  return std::filesystem::path(STILLSLAM_SHARED_DIR) / "data" / "frame_lists" / set / name;
 }
 
-// The DynaSLAM lists are associate.py output for the real TUM fr3 dynamic
-// sequences. Splitting one back into rgb.txt/depth.txt (plus unmatched
+// The DynaSLAM / DANI-SLAM lists are associate.py output for the real TUM fr3
+// and Bonn RGB-D Dynamic sequences. Splitting one back into rgb.txt/depth.txt (plus unmatched
 // distractor frames) and re-associating must reproduce it exactly.
 TEST(TimestampAssociation, ReproducesRealTumFrameLists) {
   if (!std::filesystem::exists(frame_list("fr3_walking_xyz.txt"))) {
     GTEST_SKIP() << "shared data not found at " << STILLSLAM_SHARED_DIR << " (../shared next to the repo)";
   }
   struct Expected {
+    const char* set;
     const char* name;
     std::size_t count;
   };
-  for (const Expected& e : {Expected{"fr3_walking_xyz.txt", 827}, Expected{"fr3_walking_static.txt", 717},
-                            Expected{"fr3_walking_rpy.txt", 866}, Expected{"fr3_walking_halfsphere.txt", 1021},
-                            Expected{"fr3_sitting_static.txt", 680}, Expected{"fr3_sitting_xyz.txt", 1219}}) {
+  for (const Expected& e :
+       {Expected{"tum", "fr3_walking_xyz.txt", 827}, Expected{"tum", "fr3_walking_static.txt", 717},
+        Expected{"tum", "fr3_walking_rpy.txt", 866}, Expected{"tum", "fr3_walking_halfsphere.txt", 1021},
+        Expected{"tum", "fr3_sitting_static.txt", 680}, Expected{"tum", "fr3_sitting_xyz.txt", 1219},
+        Expected{"bonn", "rgbd_bonn_crowd.txt", 927}, Expected{"bonn", "rgbd_bonn_person2.txt", 567}}) {
     SCOPED_TRACE(e.name);
-    const auto reference = read_tum_associations(frame_list(e.name));
+    const auto reference = read_tum_associations(frame_list(e.name, e.set));
     ASSERT_EQ(reference.size(), e.count);
 
     TempDir dir;
