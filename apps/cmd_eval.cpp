@@ -102,7 +102,7 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--rpe-unit", args->rpe_unit, "Unit of --rpe-delta: frames, s or m (path travelled)")
       ->capture_default_str();
   cmd->add_flag("--rpe-all-pairs", args->rpe_all_pairs,
-                "Start an RPE pair at every pose instead of consecutive non-overlapping steps (evo default)");
+                "Start an RPE pair at every pose (default: consecutive, non-overlapping steps as evo)");
   cmd->add_option("--json", args->json, "Write the results as JSON to this file");
   cmd->add_option("--plot", args->plot, "Write SVG plots: FILE (trajectory view) and FILE_error (APE over time)");
   cmd->callback([args] { run_eval(*args); });

@@ -101,6 +101,21 @@ TEST(EvaluationPlots, WritesTwoSvgsWithEveryPoseInsideTheCanvas) {
   EXPECT_NE(view.find("y [m]"), std::string::npos);
 }
 
+TEST(EvaluationPlots, TrackingGapsBreakTheLines) {
+  auto [gt, est] = offset_loop();
+  // Drop 3 s of poses (30 of them): the views must not bridge the hole.
+  gt.erase(gt.begin() + 40, gt.begin() + 70);
+  est.erase(est.begin() + 40, est.begin() + 70);
+  const EvaluationResult r = evaluate(gt, est, EvaluationOptions{});
+  auto count = [](const std::string& svg, const std::string& what) {
+    std::size_t n = 0;
+    for (auto pos = svg.find(what); pos != std::string::npos; pos = svg.find(what, pos + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count(trajectory_view_svg(r), "<polyline"), 4u);  // two series, two runs each
+  EXPECT_EQ(count(ape_over_time_svg(r), "<polyline"), 3u);    // APE in two runs + the rmse line
+}
+
 TEST(EvalCommand, WritesJsonEndToEnd) {
   const fs::path binary = STILLSLAM_BINARY;
   if (!fs::exists(binary)) GTEST_SKIP() << binary << " is not built; build the stillslam target first";
