@@ -1,13 +1,13 @@
 #include "stillslam/optimize/pose_optimizer.h"
 
-#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
+#include "stillslam/optimize/pose_residuals.h"
 #include "stillslam/optimize/reprojection_costs.h"
-#include "stillslam/optimize/se3_manifold.h"
 
 namespace stillslam {
 
@@ -21,21 +21,8 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
   result.inlier.assign(n, true);
   if (n == 0) return result;
 
-  // Cost functions are built once and shared by every round's problem.
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n);
   std::vector<bool> stereo(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const PoseObservation& o = observations[i];
-    stereo[i] = o.u_right >= 0 && k.bf > 0;
-    if (stereo[i]) {
-      costs[i] = std::make_unique<StereoPoseCost>(k, o.point_world, o.pixel, o.u_right, o.inv_sigma2);
-    } else {
-      costs[i] = std::make_unique<MonoPoseCost>(k, o.point_world, o.pixel, o.inv_sigma2);
-    }
-  }
-  ceres::HuberLoss huber_mono(std::sqrt(options.chi2_mono));
-  ceres::HuberLoss huber_stereo(std::sqrt(options.chi2_stereo));
-  Se3LeftManifold manifold;
+  for (std::size_t i = 0; i < n; ++i) stereo[i] = observations[i].u_right >= 0 && k.bf > 0;
 
   auto classify = [&](const Eigen::Isometry3d& T) {
     int inliers = 0;
@@ -55,42 +42,43 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
     result.inlier[i] = (T_cam_world_init * observations[i].point_world).z() > 0;
   }
 
-  PoseParams pose = to_pose_params(T_cam_world_init);
   ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // cheaper than QR for 6 unknowns
   solver_options.max_num_iterations = options.iterations_per_round;
   solver_options.logging_type = ceres::SILENT;
   solver_options.minimizer_progress_to_stdout = false;
   solver_options.num_threads = 1;
 
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.enable_fast_removal = false;
-  problem_options.disable_all_safety_checks = true;
+  PoseResidualsOptions residual_options;
+  residual_options.huber_mono = std::sqrt(options.chi2_mono);
+  residual_options.huber_stereo = std::sqrt(options.chi2_stereo);
 
+  Eigen::Isometry3d T = T_cam_world_init;
   const int rounds = std::max(1, options.rounds);
   for (int round = 0; round < rounds; ++round) {
-    const bool robust = options.huber && round + 1 < rounds;
-    ceres::Problem problem(problem_options);
-    problem.AddParameterBlock(pose.data(), 7, &manifold);
-    int used = 0;
+    std::vector<std::size_t> active;
     for (std::size_t i = 0; i < n; ++i) {
-      if (!result.inlier[i]) continue;
-      ceres::LossFunction* loss = robust ? (stereo[i] ? &huber_stereo : &huber_mono) : nullptr;
-      problem.AddResidualBlock(costs[i].get(), loss, pose.data());
-      ++used;
+      if (result.inlier[i]) active.push_back(i);
     }
     // Fewer than 3 points cannot fix 6 dof; keep the current estimate.
-    if (used < 3) break;
+    if (active.size() < 3) break;
+    residual_options.robust = options.huber && round + 1 < rounds;
+    // `params` is the delta around T (see pose_residuals.h).
+    const auto residuals =
+        std::make_unique<PoseResiduals>(k, T, observations, stereo, std::move(active), residual_options);
+    double params[6] = {0, 0, 0, 0, 0, 0};
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    problem.AddResidualBlock(residuals.get(), nullptr, params);
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
-    result.num_inliers = classify(from_pose_params(pose.data()));
+    T = residuals->pose(params);
+    result.num_inliers = classify(T);
     if (result.num_inliers < 10) break;
   }
-  result.T_cam_world = from_pose_params(pose.data());
-  result.num_inliers = classify(result.T_cam_world);
+  result.T_cam_world = T;
+  result.num_inliers = classify(T);
   return result;
 }
 

@@ -57,44 +57,6 @@ void fill_pose_jacobian(const Eigen::Matrix<double, N, 3>& Jp, const Eigen::Vect
 
 }  // namespace
 
-MonoPoseCost::MonoPoseCost(const Intrinsics& k, const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
-                           double inv_sigma2)
-    : k_(k), point_world_(point_world), pixel_(pixel), sqrt_info_(std::sqrt(inv_sigma2)) {}
-
-bool MonoPoseCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  const Projected pr = transform(parameters[0], point_world_);
-  const Eigen::Vector3d& p = pr.p_cam;
-  if (p.z() < kMinDepth) return false;
-  const double iz = 1.0 / p.z();
-  residuals[0] = sqrt_info_ * (k_.fx * p.x() * iz + k_.cx - pixel_.x());
-  residuals[1] = sqrt_info_ * (k_.fy * p.y() * iz + k_.cy - pixel_.y());
-  if (jacobians && jacobians[0]) {
-    Eigen::Map<RowMat27> J(jacobians[0]);
-    fill_pose_jacobian<2>(projection_jacobian<2>(k_, p, sqrt_info_), p, J);
-  }
-  return true;
-}
-
-StereoPoseCost::StereoPoseCost(const Intrinsics& k, const Eigen::Vector3d& point_world,
-                               const Eigen::Vector2d& pixel, double u_right, double inv_sigma2)
-    : k_(k), point_world_(point_world), observation_(pixel.x(), pixel.y(), u_right), sqrt_info_(std::sqrt(inv_sigma2)) {}
-
-bool StereoPoseCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  const Projected pr = transform(parameters[0], point_world_);
-  const Eigen::Vector3d& p = pr.p_cam;
-  if (p.z() < kMinDepth) return false;
-  const double iz = 1.0 / p.z();
-  const double u = k_.fx * p.x() * iz + k_.cx;
-  residuals[0] = sqrt_info_ * (u - observation_.x());
-  residuals[1] = sqrt_info_ * (k_.fy * p.y() * iz + k_.cy - observation_.y());
-  residuals[2] = sqrt_info_ * (u - k_.bf * iz - observation_.z());
-  if (jacobians && jacobians[0]) {
-    Eigen::Map<RowMat37> J(jacobians[0]);
-    fill_pose_jacobian<3>(projection_jacobian<3>(k_, p, sqrt_info_), p, J);
-  }
-  return true;
-}
-
 MonoBaCost::MonoBaCost(const Intrinsics& k, const Eigen::Vector2d& pixel, double inv_sigma2)
     : k_(k), pixel_(pixel), sqrt_info_(std::sqrt(inv_sigma2)) {}
 

@@ -1,9 +1,10 @@
 #pragma once
-// Reprojection residuals with analytic Jacobians, whitened by
-// sqrt(inv_sigma2): mono [u - u_obs, v - v_obs] and stereo/RGB-D
+// Bundle-adjustment reprojection residuals with analytic Jacobians, whitened
+// by sqrt(inv_sigma2): mono [u - u_obs, v - v_obs] and stereo/RGB-D
 // [u - u_obs, v - v_obs, u_r - u_r_obs] with u_r = u - bf / z. Pose blocks use
 // Se3LeftManifold (tangent Jacobian in the first 6 ambient columns). Evaluate
 // fails (step rejected) when the point is not in front of the camera.
+// (The pose-only costs live in pose_delta.h.)
 #include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 
@@ -15,33 +16,6 @@ namespace stillslam {
 struct Intrinsics {
   double fx, fy, cx, cy, bf;
   explicit Intrinsics(const PinholeCamera& c) : fx(c.fx()), fy(c.fy()), cx(c.cx()), cy(c.cy()), bf(c.bf()) {}
-};
-
-// Pose-only: parameter block = pose (7), point fixed.
-class MonoPoseCost final : public ceres::SizedCostFunction<2, 7> {
- public:
-  MonoPoseCost(const Intrinsics& k, const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
-               double inv_sigma2);
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  Intrinsics k_;
-  Eigen::Vector3d point_world_;
-  Eigen::Vector2d pixel_;
-  double sqrt_info_;
-};
-
-class StereoPoseCost final : public ceres::SizedCostFunction<3, 7> {
- public:
-  StereoPoseCost(const Intrinsics& k, const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
-                 double u_right, double inv_sigma2);
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  Intrinsics k_;
-  Eigen::Vector3d point_world_;
-  Eigen::Vector3d observation_;  // u, v, u_r
-  double sqrt_info_;
 };
 
 // Full BA: parameter blocks = pose (7), point (3).
