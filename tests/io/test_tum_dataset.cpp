@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
+#include <thread>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -66,6 +68,43 @@ TEST(TumDataset, AssociatesListsAndLoadsFrames) {
   Settings s = tum_settings();
   s.depth_map_factor = 1000;
   EXPECT_FLOAT_EQ(open_dataset(seq, s)->load(0).depth.at<float>(5, 5), 5.0f);
+}
+
+TEST(TumDataset, ImageSizeMustMatchSettings) {
+  TempDir dir;
+  const fs::path seq = test::write_tum_fixture(dir.path(), 2);
+  Settings s = tum_settings();
+  s.camera.width = 640;
+  s.camera.height = 480;
+  const std::string m = error_of([&] { open_dataset(seq, s)->load(0); });
+  EXPECT_NE(m.find("rgb/100.000000.png: image is 64x48 but the settings say Camera.width/height 640x480"),
+            std::string::npos)
+      << m;
+  s.camera.width = 64;
+  s.camera.height = 48;
+  EXPECT_TRUE(open_dataset(seq, s)->load(0).valid);
+}
+
+// Concurrent load() calls on one dataset give the same frames as serial ones.
+TEST(TumDataset, ConcurrentLoads) {
+  TempDir dir;
+  const fs::path seq = test::write_tum_fixture(dir.path(), 8);
+  const auto d = open_dataset(seq, tum_settings());
+  std::vector<SensorFrame> serial;
+  for (std::size_t i = 0; i < d->size(); ++i) serial.push_back(d->load(i));
+  std::vector<SensorFrame> a(d->size()), b(d->size());
+  std::thread ta([&] {
+    for (std::size_t i = 0; i < d->size(); ++i) a[i] = d->load(i);
+  });
+  std::thread tb([&] {
+    for (std::size_t i = d->size(); i-- > 0;) b[i] = d->load(i);
+  });
+  ta.join();
+  tb.join();
+  for (std::size_t i = 0; i < d->size(); ++i) {
+    EXPECT_EQ(cv::norm(a[i].color, serial[i].color, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(b[i].depth, serial[i].depth, cv::NORM_INF), 0.0);
+  }
 }
 
 TEST(TumDataset, AssociationFileAutodetectedAndOption) {

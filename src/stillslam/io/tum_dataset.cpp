@@ -66,7 +66,10 @@ std::vector<TumPair> associate_tum_lists(const std::filesystem::path& rgb_list,
 
 TumDataset::TumDataset(const std::filesystem::path& folder, const Settings& settings,
                        const DatasetOptions& options)
-    : FileDataset(options.skip_bad_frames), folder_(folder), depth_map_factor_(settings.depth_map_factor) {
+    : FileDataset(options.skip_bad_frames),
+      folder_(folder),
+      depth_map_factor_(settings.depth_map_factor),
+      expected_size_(settings.camera.width, settings.camera.height) {
   std::error_code ec;
   if (options.association_file) {
     source_ = *options.association_file;
@@ -101,6 +104,14 @@ SensorFrame TumDataset::read_frame(std::size_t i) const {
   SensorFrame frame;
   frame.name = p.rgb_file;
   frame.color = read_color_image(folder_ / p.rgb_file);
+  // The RGB-D pipeline uses the settings' intrinsics as they are: images of
+  // another size mean the wrong settings file.
+  if (expected_size_.width > 0 && expected_size_.height > 0 && frame.color.size() != expected_size_) {
+    throw Error((folder_ / p.rgb_file).string() + ": image is " + std::to_string(frame.color.cols) + "x" +
+                std::to_string(frame.color.rows) + " but the settings say Camera.width/height " +
+                std::to_string(expected_size_.width) + "x" + std::to_string(expected_size_.height) +
+                " (use the settings file made for this camera)");
+  }
   cv::cvtColor(frame.color, frame.gray, cv::COLOR_BGR2GRAY);
   frame.depth = read_depth_image(folder_ / p.depth_file, depth_map_factor_);
   if (frame.depth.size() != frame.color.size()) {

@@ -47,6 +47,7 @@ class TumDataset : public FileDataset {
   std::filesystem::path folder_;
   std::filesystem::path source_;
   double depth_map_factor_;
+  cv::Size expected_size_;  // Camera.width/height when the settings give them
   std::vector<TumPair> pairs_;
 };
 
