@@ -1,0 +1,92 @@
+// `stillslam segment` end to end, through the built binary.
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "segmentation/test_data.h"
+
+namespace stillslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int status = -1;
+  std::string out;
+};
+
+CommandRun run(const std::string& args) {
+  const std::string cmd = std::string(STILLSLAM_BINARY) + " " + args + " 2>/dev/null";
+  CommandRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  r.status = pclose(pipe);
+  return r;
+}
+
+#define REQUIRE_BINARY()                                                                         \
+  if (!test::exists(STILLSLAM_BINARY)) {                                                         \
+    GTEST_SKIP() << STILLSLAM_BINARY << " is not built (build the stillslam target first)";      \
+  }
+
+TEST(SegmentCommand, PrintsOneJsonLinePerDetectionAndWritesMasks) {
+  REQUIRE_BINARY()
+  const fs::path out = fs::temp_directory_path() / "stillslam_segment_command_test";
+  fs::remove_all(out);
+  const CommandRun r = run("segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
+                    out.string() + " --threads 1");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::regex line(
+      R"re(\{"class": "([a-z ]+)", "class_id": (\d+), "score": (0\.\d+), "box": \[([\d.]+), ([\d.]+), ([\d.]+), ([\d.]+)\]\})re");
+  std::istringstream lines(r.out);
+  std::string l;
+  int persons = 0, total = 0;
+  while (std::getline(lines, l)) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(l, m, line)) << l;
+    ++total;
+    if (m[1] == "person") ++persons;
+    if (total == 1) {  // highest score first: the person at x 220..346 (see yolo_reference_test)
+      EXPECT_EQ(m[2], "0");
+      EXPECT_NEAR(std::stod(m[4]), 220.2, 0.2);
+      EXPECT_NEAR(std::stod(m[7]), 855.4, 0.2);
+    }
+  }
+  EXPECT_EQ(total, 5);
+  EXPECT_EQ(persons, 3);
+  // Union of the dynamic class (person) and one mask per instance, frame-sized.
+  const cv::Mat union_mask = cv::imread((out / "masks" / "bus.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(union_mask.size(), cv::Size(810, 1080));
+  EXPECT_NEAR(cv::countNonZero(union_mask), 33990 + 50663 + 20566, 0.02 * 105219);
+  EXPECT_TRUE(test::exists((out / "instances" / "bus_00_person.png").string()));
+  EXPECT_TRUE(test::exists((out / "instances" / "bus_04_truck.png").string()));
+  EXPECT_TRUE(test::exists((out / "overlays" / "bus.jpg").string()));
+  fs::remove_all(out);
+}
+
+TEST(SegmentCommand, ClassFilterAndErrors) {
+  REQUIRE_BINARY()
+  const fs::path out = fs::temp_directory_path() / "stillslam_segment_command_test2";
+  const std::string base = "segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
+                           out.string() + " --threads 1";
+  const CommandRun buses = run(base + " --classes bus,7");
+  ASSERT_EQ(buses.status, 0);
+  EXPECT_EQ(std::count(buses.out.begin(), buses.out.end(), '\n'), 2);  // bus + truck, no people
+  EXPECT_EQ(buses.out.find("person"), std::string::npos);
+  EXPECT_NE(run(base + " --classes unicorn").status, 0);
+  EXPECT_NE(run("segment --model /no/such/model.onnx --image " + test::bus_image() + " --out " + out.string()).status, 0);
+  EXPECT_NE(run("segment --model " + test::shipped_model() + " --image /no/such.jpg --out " + out.string()).status, 0);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace stillslam
