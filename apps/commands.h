@@ -8,5 +8,6 @@ namespace stillslam::apps {
 void add_eval_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
+void add_segment_command(CLI::App& app);
 
 }  // namespace stillslam::apps
