@@ -16,8 +16,9 @@ struct SimulationOptions {
   int frames = 300;            // at most this many frames (file trajectories may be shorter)
   double fps = 30.0;
   int width = 640, height = 480;
-  // Pinhole like TUM fr3 (scaled with the image size when width/height change).
-  double fx = 535.4, fy = 539.2, cx = 320.1, cy = 247.6;
+  // Pinhole like TUM fr3 but with square pixels (fx = fy) so that the stereo pair
+  // stays exactly rectified through cv::stereoRectify; scaled with the image size.
+  double fx = 535.4, fy = 535.4, cx = 320.1, cy = 247.6;
 
   std::uint64_t seed = 0;
   int people = 2;              // walking people
