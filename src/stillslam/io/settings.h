@@ -16,8 +16,14 @@ enum class SensorType { Monocular, Stereo, Rgbd };
 
 struct Settings {
   std::filesystem::path file;               // where it was read from
-  CameraCalibration camera;                 // left / RGB camera
-  std::optional<StereoCalibration> stereo;  // when the file describes a stereo pair
+  // Left / RGB camera. `distortion` is empty when the file gives none or all
+  // zeros; width/height are 0 when the file does not give them.
+  CameraCalibration camera;
+  // Set when the file describes a stereo pair: Camera2.* + Stereo.T_c1_c2 or
+  // LEFT/RIGHT blocks (rectified = false: raw cameras to rectify), or
+  // Camera.type "Rectified" / a baseline without DepthMapFactor (rectified =
+  // true, left = right = camera).
+  std::optional<StereoCalibration> stereo;
   double bf = 0;                            // baseline * fx (Camera.bf, or Stereo.b * fx)
   double th_depth = 40;                     // ThDepth / Stereo.ThDepth, in baselines
   double depth_map_factor = 5000;           // DepthMapFactor / RGBD.DepthMapFactor
