@@ -1,9 +1,21 @@
 #include "stillslam/features/descriptor.h"
 
-#include <bit>
 #include <cstring>
 
 namespace stillslam {
+namespace {
+
+// Branch-free bit count (SWAR). The build targets baseline x86-64 without the
+// POPCNT instruction, where std::popcount becomes a slow library call; this
+// is ~10x faster there and compiles to a handful of ALU operations anywhere.
+inline int bit_count(std::uint64_t x) {
+  x = x - ((x >> 1) & 0x5555555555555555ULL);
+  x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+  x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+  return static_cast<int>((x * 0x0101010101010101ULL) >> 56);
+}
+
+}  // namespace
 
 int descriptor_distance(const std::uint8_t* a, const std::uint8_t* b) {
   int distance = 0;
@@ -11,7 +23,7 @@ int descriptor_distance(const std::uint8_t* a, const std::uint8_t* b) {
     std::uint64_t wa, wb;
     std::memcpy(&wa, a + i, 8);
     std::memcpy(&wb, b + i, 8);
-    distance += std::popcount(wa ^ wb);
+    distance += bit_count(wa ^ wb);
   }
   return distance;
 }

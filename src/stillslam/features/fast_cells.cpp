@@ -37,19 +37,28 @@ std::vector<cv::KeyPoint> detect_fast_in_cells(const cv::Mat& image, const FastC
   }
   if (options.min_threshold >= options.ini_threshold) return corners;
 
-  std::vector<cv::KeyPoint> cell_corners;
+  // Retry with the low threshold in cells that got nothing; horizontal runs
+  // of empty cells share one cv::FAST call (fewer calls, and non-maximum
+  // suppression is cut only at run ends).
+  std::vector<cv::KeyPoint> low;
   for (int r = 0; r < n_rows; ++r) {
     const int cy0 = y0 + r * cell_h, cy1 = std::min(cy0 + cell_h, y1);
     if (cy1 <= cy0) continue;
-    for (int c = 0; c < n_cols; ++c) {
-      if (per_cell[static_cast<std::size_t>(r * n_cols + c)] > 0) continue;
-      const int cx0 = x0 + c * cell_w, cx1 = std::min(cx0 + cell_w, x1);
+    for (int c = 0; c < n_cols;) {
+      if (per_cell[static_cast<std::size_t>(r * n_cols + c)] > 0) {
+        ++c;
+        continue;
+      }
+      int c_end = c + 1;
+      while (c_end < n_cols && per_cell[static_cast<std::size_t>(r * n_cols + c_end)] == 0) ++c_end;
+      const int cx0 = x0 + c * cell_w, cx1 = std::min(x0 + c_end * cell_w, x1);
+      c = c_end;
       if (cx1 <= cx0) continue;
-      const cv::Mat cell = image(cv::Range(cy0 - kFastMargin, cy1 + kFastMargin),
-                                 cv::Range(cx0 - kFastMargin, cx1 + kFastMargin));
-      cell_corners.clear();
-      cv::FAST(cell, cell_corners, options.min_threshold, true);
-      for (auto& kp : cell_corners) {
+      const cv::Mat run = image(cv::Range(cy0 - kFastMargin, cy1 + kFastMargin),
+                                cv::Range(cx0 - kFastMargin, cx1 + kFastMargin));
+      low.clear();
+      cv::FAST(run, low, options.min_threshold, true);
+      for (auto& kp : low) {
         kp.pt.x += static_cast<float>(cx0 - kFastMargin);
         kp.pt.y += static_cast<float>(cy0 - kFastMargin);
         corners.push_back(kp);

@@ -1,0 +1,233 @@
+// Feature front-end timings: ORB extraction (ours vs cv::ORB on the same
+// images, two threads and one), stereo matching on real rectified EuRoC
+// pairs, descriptor distance. Plain main (prints a table), so it runs with or
+// without Google Benchmark installed.
+//
+//   build/bench/bench_features [--repeats N]
+//
+// Real data is read from ../shared when present (coco128 photo, EuRoC micro
+// clip); the procedural texture is always available.
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "../tests/features/textured_image.h"  // same procedural texture as the tests
+#include "stillslam/core/stopwatch.h"
+#include "stillslam/features/descriptor.h"
+#include "stillslam/features/orb_extractor.h"
+#include "stillslam/features/stereo_matcher.h"
+
+namespace fs = std::filesystem;
+using namespace stillslam;
+
+namespace {
+
+#ifdef STILLSLAM_BENCH_SHARED_DIR
+const fs::path kShared = STILLSLAM_BENCH_SHARED_DIR;
+#else
+const fs::path kShared = fs::path(__FILE__).parent_path().parent_path().parent_path() / "shared";
+#endif
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+// CPU time of the calling thread: with cv::setNumThreads(1) this is the work
+// itself, unaffected by other processes competing for the cores.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+struct Timing {
+  double median_ms = 0;      // wall clock
+  double median_cpu_ms = 0;  // calling thread's CPU time
+  double mean_features = 0;
+};
+
+template <typename Extract>
+Timing time_extraction(const std::vector<cv::Mat>& images, int repeats, Extract&& extract) {
+  std::vector<double> ms, cpu;
+  double features = 0;
+  for (int r = 0; r < repeats; ++r) {
+    for (const cv::Mat& image : images) {
+      const double cpu0 = thread_cpu_ms();
+      Stopwatch sw;
+      const std::size_t n = extract(image);
+      ms.push_back(sw.elapsed_ms());
+      cpu.push_back(thread_cpu_ms() - cpu0);
+      features += static_cast<double>(n);
+    }
+  }
+  return {median(ms), median(cpu), features / static_cast<double>(ms.size())};
+}
+
+void compare(const char* name, const std::vector<cv::Mat>& images, int n_features, int repeats) {
+  if (images.empty()) return;
+  OrbOptions options;
+  options.n_features = n_features;
+  const OrbExtractor ours(options);
+  const cv::Ptr<cv::ORB> opencv = cv::ORB::create(n_features, 1.2f, 8);
+  auto run_ours = [&](const cv::Mat& im) { return ours.extract(im).size(); };
+  auto run_opencv = [&](const cv::Mat& im) {
+    std::vector<cv::KeyPoint> kps;
+    cv::Mat desc;
+    opencv->detectAndCompute(im, cv::noArray(), kps, desc);
+    return kps.size();
+  };
+  const int threads = cv::getNumThreads();
+  const Timing ours_mt = time_extraction(images, repeats, run_ours);
+  const Timing cv_mt = time_extraction(images, repeats, run_opencv);
+  cv::setNumThreads(1);
+  const Timing ours_1 = time_extraction(images, repeats, run_ours);
+  const Timing cv_1 = time_extraction(images, repeats, run_opencv);
+  cv::setNumThreads(threads);
+  std::printf("%-36s %dx%d n=%d\n", name, images[0].cols, images[0].rows, n_features);
+  std::printf("  stillslam: %6.2f ms wall (%d threads) | %6.2f ms wall, %6.2f ms cpu (1 thread) | %5.0f keypoints\n",
+              ours_mt.median_ms, threads, ours_1.median_ms, ours_1.median_cpu_ms, ours_mt.mean_features);
+  std::printf("  cv::ORB:   %6.2f ms wall (%d threads) | %6.2f ms wall, %6.2f ms cpu (1 thread) | %5.0f keypoints\n",
+              cv_mt.median_ms, threads, cv_1.median_ms, cv_1.median_cpu_ms, cv_mt.mean_features);
+}
+
+std::vector<double> read_doubles(const cv::FileNode& node) {
+  std::vector<double> v;
+  node >> v;
+  return v;
+}
+
+struct EurocStereo {
+  std::vector<cv::Mat> left, right;  // rectified
+  double fx = 0, bf = 0;
+};
+
+// Rectifies the EuRoC micro clip from its own sensor.yaml calibration.
+EurocStereo load_euroc(const fs::path& mav0) {
+  EurocStereo out;
+  cv::Mat K[2], D[2], T_BS[2];
+  for (int c = 0; c < 2; ++c) {
+    cv::FileStorage fs_cam((mav0 / ("cam" + std::to_string(c)) / "sensor.yaml").string(), cv::FileStorage::READ);
+    const auto intr = read_doubles(fs_cam["intrinsics"]);
+    K[c] = (cv::Mat_<double>(3, 3) << intr[0], 0, intr[2], 0, intr[1], intr[3], 0, 0, 1);
+    D[c] = cv::Mat(read_doubles(fs_cam["distortion_coefficients"])).clone();
+    T_BS[c] = cv::Mat(read_doubles(fs_cam["T_BS"]["data"])).clone().reshape(1, 4);
+  }
+  const cv::Mat T_c1_c0 = T_BS[1].inv() * T_BS[0];
+  const cv::Mat R = T_c1_c0(cv::Rect(0, 0, 3, 3)).clone(), t = T_c1_c0(cv::Rect(3, 0, 1, 3)).clone();
+  const cv::Size size(752, 480);
+  cv::Mat R1, R2, P1, P2, Q;
+  cv::stereoRectify(K[0], D[0], K[1], D[1], size, R, t, R1, R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, 0);
+  cv::Mat m0x, m0y, m1x, m1y;
+  cv::initUndistortRectifyMap(K[0], D[0], R1, P1, size, CV_32FC1, m0x, m0y);
+  cv::initUndistortRectifyMap(K[1], D[1], R2, P2, size, CV_32FC1, m1x, m1y);
+  out.fx = P1.at<double>(0, 0);
+  out.bf = -P2.at<double>(0, 3);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(mav0 / "cam0" / "data")) files.push_back(e.path().filename());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    const cv::Mat l = cv::imread((mav0 / "cam0" / "data" / f).string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat r = cv::imread((mav0 / "cam1" / "data" / f).string(), cv::IMREAD_GRAYSCALE);
+    if (l.empty() || r.empty()) continue;
+    cv::Mat lr, rr;
+    cv::remap(l, lr, m0x, m0y, cv::INTER_LINEAR);
+    cv::remap(r, rr, m1x, m1y, cv::INTER_LINEAR);
+    out.left.push_back(lr);
+    out.right.push_back(rr);
+  }
+  return out;
+}
+
+void bench_stereo(const EurocStereo& data) {
+  OrbOptions options;
+  options.n_features = 1200;  // EuRoC.yaml
+  const OrbExtractor extractor(options);
+  std::vector<double> ms, matches, depths;
+  for (std::size_t i = 0; i < data.left.size(); ++i) {
+    std::vector<cv::Mat> pl, pr;
+    const OrbFeatures fl = extractor.extract(data.left[i], &pl);
+    const OrbFeatures fr = extractor.extract(data.right[i], &pr);
+    const double cpu0 = thread_cpu_ms();
+    const StereoMatches m = match_stereo(fl, pl, fr, pr, extractor.pyramid(), data.fx, data.bf);
+    ms.push_back(thread_cpu_ms() - cpu0);
+    matches.push_back(m.num_matches);
+    for (float d : m.depth) {
+      if (d > 0) depths.push_back(d);
+    }
+  }
+  double mean_matches = 0;
+  for (double m : matches) mean_matches += m;
+  mean_matches /= static_cast<double>(std::max<std::size_t>(1, matches.size()));
+  std::sort(depths.begin(), depths.end());
+  auto pct = [&](double p) { return depths.empty() ? 0.0 : depths[static_cast<std::size_t>(p * (depths.size() - 1))]; };
+  std::printf("stereo matching EuRoC V1_01 micro (%zu rectified pairs, fx %.1f, bf %.2f): median %.2f ms cpu, "
+              "%.0f matches of 1200 per pair, depth p10/p50/p90 %.2f/%.2f/%.2f m\n",
+              data.left.size(), data.fx, data.bf, median(ms), mean_matches, pct(0.1), pct(0.5), pct(0.9));
+}
+
+void bench_descriptor_distance() {
+  cv::RNG rng(1);
+  cv::Mat a(2000, 32, CV_8UC1), b(2000, 32, CV_8UC1);
+  rng.fill(a, cv::RNG::UNIFORM, 0, 256);
+  rng.fill(b, cv::RNG::UNIFORM, 0, 256);
+  long sum = 0;
+  Stopwatch sw;
+  for (int i = 0; i < a.rows; ++i) {
+    const std::uint8_t* pa = a.ptr<std::uint8_t>(i);
+    for (int j = 0; j < b.rows; ++j) sum += descriptor_distance(pa, b.ptr<std::uint8_t>(j));
+  }
+  const double ours_ns = sw.elapsed_ms() * 1e6 / (a.rows * b.rows);
+  long sum_cv = 0;
+  sw.restart();
+  for (int i = 0; i < a.rows; ++i) {
+    for (int j = 0; j < b.rows; ++j) {
+      sum_cv += static_cast<long>(cv::norm(a.row(i), b.row(j), cv::NORM_HAMMING));
+    }
+  }
+  const double cv_ns = sw.elapsed_ms() * 1e6 / (a.rows * b.rows);
+  std::printf("descriptor_distance: %.1f ns per pair (cv::norm NORM_HAMMING %.1f ns), checksums %s\n", ours_ns, cv_ns,
+              sum == sum_cv ? "equal" : "DIFFER");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 30;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[i + 1]));
+  }
+  std::printf("OpenCV %s, %d threads; medians over %d runs. Wall times depend on machine load, cpu times\n"
+              "(1 thread) do not.\n",
+              CV_VERSION, cv::getNumThreads(), repeats);
+  compare("procedural texture", {test::textured_image()}, 1000, repeats);
+
+  const fs::path photo = kShared / "images" / "coco128" / "images" / "train2017" / "000000000110.jpg";
+  cv::Mat coco = cv::imread(photo.string(), cv::IMREAD_GRAYSCALE);
+  if (!coco.empty()) {
+    cv::resize(coco, coco, cv::Size(640, 480), 0, 0, cv::INTER_AREA);
+    compare("coco128 photo 000000000110", {coco}, 1000, repeats);
+  } else {
+    std::printf("(skipped coco128 photo: %s not found)\n", photo.c_str());
+  }
+
+  const fs::path mav0 = kShared / "data" / "euroc_V1_01_micro" / "mav0";
+  if (fs::exists(mav0 / "cam1" / "sensor.yaml")) {
+    const EurocStereo euroc = load_euroc(mav0);
+    compare("EuRoC V1_01 micro cam0 (rectified)", euroc.left, 1200, std::max(1, repeats / 10));
+    bench_stereo(euroc);
+  } else {
+    std::printf("(skipped EuRoC: %s not found)\n", mav0.c_str());
+  }
+  bench_descriptor_distance();
+  return 0;
+}
