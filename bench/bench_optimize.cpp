@@ -83,7 +83,7 @@ BaScene ba_scene(const PinholeCamera& cam, int num_kf, int num_points, bool ster
   std::vector<Eigen::Isometry3d> truth;
   for (int k = 0; k < num_kf; ++k) {
     const double a = 1.5 * k / std::max(1, num_kf - 1);
-    truth.push_back(pose({a - 0.75, 0.1 * std::sin(3 * a), 0.2 * a}, {0.02 * k, -0.03 * k, 0.01}));
+    truth.push_back(pose({a - 0.75, 0.1 * std::sin(3 * a), 0.2 * a}, {0.12 * a, -0.18 * a, 0.01}));
     Eigen::Isometry3d noisy = truth.back();
     if (k >= 2) {
       noisy.translation() += 0.03 * Eigen::Vector3d(small(rng), small(rng), small(rng));

@@ -171,9 +171,12 @@ TEST(BundleAdjustment, RejectsBadIndices) {
   BaObservation o;
   o.keyframe = 1;
   EXPECT_THROW(bundle_adjust(cam, {BaKeyframe{}}, {BaPoint{}}, {o}), Error);
-  // Nothing to do: inputs come back unchanged.
-  const auto r = bundle_adjust(cam, {BaKeyframe{}}, {BaPoint{7, {1, 2, 3}}}, {});
+  // Nothing to do: inputs come back unchanged, bit for bit.
+  BaKeyframe kf;
+  kf.T_cam_world = testing::camera_pose({0.1, 0.2, 0.3}, {0.3, -0.2, 0.1});
+  const auto r = bundle_adjust(cam, {kf}, {BaPoint{7, {1, 2, 3}}}, {});
   EXPECT_EQ(r.points[0], Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(r.T_cam_world[0].matrix(), kf.T_cam_world.matrix());
 }
 
 }  // namespace

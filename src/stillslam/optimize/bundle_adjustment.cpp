@@ -51,6 +51,8 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   std::vector<Eigen::Vector3d> xyz(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) xyz[i] = points[i].position_world;
 
+  // Keyframes that take part in some pass; the others come back bit-exact.
+  std::vector<bool> keyframe_moved(keyframes.size(), false);
   std::vector<bool> stereo(n_obs);
   std::vector<std::unique_ptr<ceres::CostFunction>> costs(n_obs);
   for (std::size_t i = 0; i < n_obs; ++i) {
@@ -115,6 +117,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
           problem.SetParameterBlockConstant(pose);
         } else {
           ++free_keyframes;
+          keyframe_moved[o.keyframe] = true;
         }
         ordering->AddElementToGroup(pose, 1);
       }
@@ -160,8 +163,8 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
 
   result.T_cam_world.resize(keyframes.size());
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
-    // Fixed keyframes are returned bit-exact (no quaternion round trip).
-    result.T_cam_world[i] = keyframes[i].fixed ? keyframes[i].T_cam_world : from_pose_params(poses[i].data());
+    // Fixed and unobserved keyframes are returned bit-exact (no quaternion round trip).
+    result.T_cam_world[i] = keyframe_moved[i] ? from_pose_params(poses[i].data()) : keyframes[i].T_cam_world;
   }
   result.points = std::move(xyz);
   return result;

@@ -54,7 +54,7 @@ struct BundleAdjustmentOptions {
 };
 
 struct BundleAdjustmentResult {
-  std::vector<Eigen::Isometry3d> T_cam_world;  // per keyframe (fixed ones unchanged)
+  std::vector<Eigen::Isometry3d> T_cam_world;  // per keyframe (fixed/unobserved ones bit-exact unchanged)
   std::vector<Eigen::Vector3d> points;         // per point
   std::vector<bool> observation_inlier;        // per observation, after the last classification
   double initial_cost = 0;  // 0.5 * sum of squared whitened errors (no robust loss)
