@@ -16,11 +16,11 @@ constexpr double kMinCorrectS12 = 300;  // measured 350
 constexpr double kMinCorrectS15 = 200;  // measured 237
 constexpr double kMinPrecCombo = 0.62;  // measured 0.707
 constexpr double kMinPrecRot30 = 0.75;  // measured 0.845
-constexpr double kMinPrecRot90 = 0.97;  // measured 0.999
+constexpr double kMinPrecRot90 = 0.98;  // measured 1.000
 constexpr double kMinPrecS12 = 0.75;  // measured 0.837
 constexpr double kMinPrecS15 = 0.62;  // measured 0.705
 constexpr double kMinRepRot30 = 0.60;  // measured 0.676
-constexpr double kMinRepRot90 = 0.80;  // measured 0.885
+constexpr double kMinRepRot90 = 0.88;  // measured 0.940
 constexpr double kMinRepS12 = 0.62;  // measured 0.700
 constexpr double kMinRepS15 = 0.68;  // measured 0.761
 
@@ -99,7 +99,9 @@ TEST_F(OrbInvariance, Rotation90ExactAndAnglesShiftBy90) {
   }
   std::cout << "[ measure ] rotation 90 orientation: pairs " << pairs << " mean |err| " << sum_abs / pairs
             << " deg, within 3 deg " << static_cast<double>(within_3deg) / pairs << "\n";
-  EXPECT_GE(pairs, 300);
+  // Measured 894 of ~1000; with keypoints mapped as x * 1.2^l instead of by
+  // pixel centres (LevelMapping) high levels stop coinciding: 497.
+  EXPECT_GE(pairs, 800);
   EXPECT_GE(static_cast<double>(within_3deg) / pairs, 0.95);
   EXPECT_LE(sum_abs / pairs, 1.0);
 }

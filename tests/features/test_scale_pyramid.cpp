@@ -2,6 +2,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/features/orb_extractor.h"
+#include "stillslam/features/pyramid_coordinates.h"
 #include "stillslam/features/scale_pyramid.h"
 
 namespace stillslam {
@@ -59,6 +60,20 @@ TEST(ImagePyramid, LevelSizes) {
   EXPECT_EQ(levels[1].size(), cv::Size(533, 400));
   EXPECT_EQ(levels[7].size(), cv::Size(179, 134));
   EXPECT_EQ(levels[7].at<std::uint8_t>(50, 50), 9);
+}
+
+TEST(PyramidCoordinates, PixelCentresAndActualRatios) {
+  const LevelMapping m(cv::Size(640, 480), cv::Size(179, 134));  // level 7 of 640x480
+  const cv::Point2f full = m.to_full({0.f, 0.f});
+  EXPECT_NEAR(full.x, 0.5f * 640.f / 179.f - 0.5f, 1e-5);
+  EXPECT_NEAR(full.y, 0.5f * 480.f / 134.f - 0.5f, 1e-5);
+  const cv::Point2f last = m.to_full({178.f, 133.f});  // last level pixel centre
+  EXPECT_NEAR(last.x, 639.f - (0.5f * 640.f / 179.f - 0.5f), 1e-3);
+  const cv::Point2f back = m.to_level(m.to_full({57.25f, 99.5f}));
+  EXPECT_NEAR(back.x, 57.25f, 1e-4);
+  EXPECT_NEAR(back.y, 99.5f, 1e-4);
+  const LevelMapping identity(cv::Size(640, 480), cv::Size(640, 480));
+  EXPECT_EQ(identity.to_full({12.f, 34.f}), cv::Point2f(12.f, 34.f));
 }
 
 }  // namespace stillslam

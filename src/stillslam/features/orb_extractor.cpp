@@ -10,6 +10,7 @@
 #include "stillslam/features/fast_cells.h"
 #include "stillslam/features/keypoint_distribution.h"
 #include "stillslam/features/orientation.h"
+#include "stillslam/features/pyramid_coordinates.h"
 
 namespace stillslam {
 namespace {
@@ -138,8 +139,9 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::Mat>* pyr
   for (int l = 0; l < pyramid_.n_levels; ++l) {
     const LevelResult& r = results[static_cast<std::size_t>(l)];
     const float s = pyramid_.scale[static_cast<std::size_t>(l)];
+    const LevelMapping mapping(levels[0].size(), levels[static_cast<std::size_t>(l)].size());
     for (const cv::KeyPoint& kp : r.keypoints) {
-      features.keypoints.emplace_back(kp.pt * s, kPatchSize * s, kp.angle, kp.response, l);
+      features.keypoints.emplace_back(mapping.to_full(kp.pt), kPatchSize * s, kp.angle, kp.response, l);
     }
     if (!r.keypoints.empty()) {
       r.descriptors.copyTo(features.descriptors.rowRange(row, row + r.descriptors.rows));

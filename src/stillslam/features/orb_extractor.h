@@ -20,6 +20,8 @@ class OrbExtractor {
   explicit OrbExtractor(const OrbOptions& options);
 
   // gray: CV_8UC1, not empty (throws stillslam::Error otherwise).
+  // Keypoints are mapped from their level to full resolution with the
+  // pixel-centre convention of LevelMapping (pyramid_coordinates.h).
   // Thread-safe; output is deterministic (levels run in parallel, results are
   // concatenated in level order).
   OrbFeatures extract(const cv::Mat& gray) const;

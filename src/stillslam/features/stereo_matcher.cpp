@@ -7,6 +7,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/features/descriptor.h"
+#include "stillslam/features/pyramid_coordinates.h"
 
 namespace stillslam {
 namespace {
@@ -115,13 +116,13 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
     if (best_distance >= options.max_descriptor_distance) continue;
 
     // SAD search along the row on the left keypoint's level.
-    const float scale = pyramid.scale[static_cast<std::size_t>(level)];
-    const float inv_scale = pyramid.inv_scale[static_cast<std::size_t>(level)];
     const cv::Mat& img_l = left_pyramid[static_cast<std::size_t>(level)];
     const cv::Mat& img_r = right_pyramid[static_cast<std::size_t>(level)];
-    const int su_l = static_cast<int>(std::lround(ul * inv_scale));
-    const int sv_l = static_cast<int>(std::lround(vl * inv_scale));
-    const int su_r0 = static_cast<int>(std::lround(right.keypoints[best_right].pt.x * inv_scale));
+    const LevelMapping mapping(left_pyramid[0].size(), img_l.size());
+    const cv::Point2f level_l = mapping.to_level(kl.pt);
+    const int su_l = static_cast<int>(std::lround(level_l.x));
+    const int sv_l = static_cast<int>(std::lround(level_l.y));
+    const int su_r0 = static_cast<int>(std::lround(mapping.to_level(right.keypoints[best_right].pt).x));
     if (sv_l - w < 0 || sv_l + w >= img_l.rows || sv_l + w >= img_r.rows) continue;
     if (su_l - w < 0 || su_l + w >= img_l.cols) continue;
     if (su_r0 - window - w < 0 || su_r0 + window + w >= img_r.cols) continue;
@@ -149,7 +150,7 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
       if (delta < -1.f || delta > 1.f) continue;
     }
 
-    float u_r = scale * (static_cast<float>(su_r0 + best_inc) + delta);
+    float u_r = mapping.to_full({static_cast<float>(su_r0 + best_inc) + delta, 0.f}).x;
     float disparity = ul - u_r;
     if (disparity < min_d || disparity >= max_d) continue;
     if (disparity <= 0.f) {  // at infinity: keep a tiny positive disparity
