@@ -132,6 +132,17 @@ TEST(Trajectory, ToleratesCrlfPaddingAndHeaderlessCsv) {
   EXPECT_EQ(padded[0].T_world_cam.translation(), Eigen::Vector3d(1, 2, 3));
 }
 
+TEST(Trajectory, CsvHeaderDecidesQuaternionOrderAndSecondStamps) {
+  // x-first columns named in the header, stamps in seconds with a fraction.
+  const fs::path csv = write_text("xyzw.csv", "#t,x,y,z,qx,qy,qz,qw\n12.25,1,2,3,0,0,1,0\n");
+  const Trajectory t = read_trajectory(csv);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].timestamp, 12.25);
+  EXPECT_NEAR(t[0].T_world_cam.linear()(0, 0), -1.0, 1e-12);  // 180 degrees about z
+  // Comment lines made only of '#' are not headers.
+  EXPECT_EQ(read_trajectory(write_text("hashes.txt", "##\n#\n1 0 0 0 0 0 0 1\n")).size(), 1u);
+}
+
 TEST(Trajectory, MalformedLineNamesFileAndLine) {
   const fs::path path = write_text("broken.txt", "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 0 zero 0 0 0 1\n");
   try {

@@ -144,33 +144,43 @@ Eigen::Quaterniond make_quaternion(const fs::path& path, const Line& line, doubl
   return q;
 }
 
-// A column header such as "# timestamp x y z qw qx qy qz" declares w-first.
-bool header_declares_w_first(const std::string& comment) {
-  const auto tokens = split(lower(trim(comment.substr(comment.find_first_not_of(" \t#%")))), true);
+// A column header ("# timestamp x y z qw qx qy qz", EuRoC's "q_RS_w [], q_RS_x []")
+// that names both qw and qx tells the quaternion order: true when w comes first.
+std::optional<bool> header_says_w_first(const std::string& header) {
+  const auto begin = header.find_first_not_of(" \t#%");
+  if (begin == std::string::npos) return std::nullopt;
+  const auto tokens = split(lower(header.substr(begin)), true);
   std::optional<std::size_t> w_index, x_index;
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     const std::string& t = tokens[i];
     if (t == "qw" || t == "q_w" || t.rfind("q_rs_w", 0) == 0) w_index = i;
     if (t == "qx" || t == "q_x" || t.rfind("q_rs_x", 0) == 0) x_index = i;
   }
-  return w_index && x_index && *w_index < *x_index;
+  if (!w_index || !x_index) return std::nullopt;
+  return *w_index < *x_index;
+}
+
+// Rotation from the 4 quaternion numbers starting at v[first].
+Eigen::Matrix3d rotation_from(const fs::path& path, const Line& line, const std::vector<double>& v, std::size_t first,
+                              bool w_first) {
+  const Eigen::Quaterniond q = w_first ? make_quaternion(path, line, v[first], v[first + 1], v[first + 2], v[first + 3])
+                                       : make_quaternion(path, line, v[first + 3], v[first], v[first + 1], v[first + 2]);
+  return q.toRotationMatrix();
 }
 
 Trajectory parse_tum(const fs::path& path, const std::vector<Line>& lines) {
   Trajectory trajectory;
-  bool w_first = false;
+  bool w_first = false;  // TUM order unless a header says otherwise
   for (const Line& line : lines) {
     if (is_comment_or_blank(line.text)) {
-      if (trajectory.empty() && trim(line.text).size() > 1 && header_declares_w_first(line.text)) w_first = true;
+      if (trajectory.empty()) w_first = header_says_w_first(line.text).value_or(w_first);
       continue;
     }
     const auto tokens = split(line.text, false);
     const auto v = parse_numbers(path, line, tokens, 8, w_first ? "TUM: t x y z qw qx qy qz" : "TUM: t x y z qx qy qz qw");
     StampedPose pose;
     pose.timestamp = parse_stamp(path, line, tokens[0]);
-    const Eigen::Quaterniond q = w_first ? make_quaternion(path, line, v[4], v[5], v[6], v[7])
-                                         : make_quaternion(path, line, v[7], v[4], v[5], v[6]);
-    pose.T_world_cam.linear() = q.toRotationMatrix();
+    pose.T_world_cam.linear() = rotation_from(path, line, v, 4, w_first);
     pose.T_world_cam.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     trajectory.push_back(pose);
   }
@@ -201,18 +211,32 @@ Trajectory parse_kitti(const fs::path& path, const std::vector<Line>& lines) {
   return trajectory;
 }
 
+// EuRoC stamps are nanoseconds. A stamp with a real fractional part below
+// 1e12 can only be seconds (someone's csv export), so it is kept as is.
+double parse_euroc_stamp(const fs::path& path, const Line& line, const std::string& token) {
+  const auto value = parse_double(token);
+  if (!value) fail(path, line.number, "timestamp '" + token + "' is not a finite number");
+  if (*value < kNanosecondStampThreshold && *value != std::floor(*value)) return *value;
+  return *parse_nanoseconds_as_seconds(token);
+}
+
 Trajectory parse_euroc(const fs::path& path, const std::vector<Line>& lines) {
   Trajectory trajectory;
+  bool w_first = true;  // EuRoC order unless a header says otherwise
   for (const Line& line : lines) {
-    if (is_comment_or_blank(line.text)) continue;
-    // A header without '#' ("timestamp,p_x,...") is allowed on the first data line only.
-    if (trajectory.empty() && !starts_with_number(line.text, true)) continue;
+    const bool header = is_comment_or_blank(line.text) || (trajectory.empty() && !starts_with_number(line.text, true));
+    if (header) {
+      // A header without '#' ("timestamp,p_x,...") is allowed before the first pose.
+      if (trajectory.empty()) w_first = header_says_w_first(line.text).value_or(w_first);
+      continue;
+    }
     const auto tokens = split(line.text, true);
-    const auto v = parse_numbers(path, line, tokens, 8, "EuRoC csv: timestamp[ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z");
+    const auto v = parse_numbers(path, line, tokens, 8,
+                                 w_first ? "EuRoC csv: timestamp[ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z"
+                                         : "csv: timestamp[ns], p_x, p_y, p_z, q_x, q_y, q_z, q_w");
     StampedPose pose;
-    const auto seconds = parse_nanoseconds_as_seconds(tokens[0]);
-    pose.timestamp = *seconds;
-    pose.T_world_cam.linear() = make_quaternion(path, line, v[4], v[5], v[6], v[7]).toRotationMatrix();
+    pose.timestamp = parse_euroc_stamp(path, line, tokens[0]);
+    pose.T_world_cam.linear() = rotation_from(path, line, v, 4, w_first);
     pose.T_world_cam.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     trajectory.push_back(pose);
   }

@@ -10,8 +10,11 @@
 //          stamps: the line index is the time, or a separate times file.
 //   EuRoC  csv `timestamp [ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z, ...`
 //          (extra columns ignored), e.g. state_groundtruth_estimate0/data.csv
-//          and ORB-SLAM3's EuRoC left-camera ground truth files, whose header
-//          also lists q_w first and whose stamps may carry a ".000" fraction.
+//          and ORB-SLAM3's EuRoC left-camera ground truth files
+//          (V101_GT_leftcam_from_ORB_SLAM3_eval.txt is one of these: ns stamps
+//          written as "1403715274312143104.0000000000", header q_RS_w first).
+//          A header naming qx before qw switches to x-first; a stamp with a real
+//          fraction below 1e12 is taken as seconds.
 //
 // Every malformed line raises stillslam::Error naming the file and line number.
 #include <Eigen/Geometry>
