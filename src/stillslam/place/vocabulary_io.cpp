@@ -1,0 +1,234 @@
+// Vocabulary file format, version 1 (all integers little-endian):
+//   8 bytes  magic "STILLVOC"
+//   u32      version (1)
+//   u32 k, u32 L, u32 weighting (WordWeighting)
+//   u64 training images, u64 training descriptors
+//   u32 node count N, u32 word count W
+//   N x u32  first child id of each node (0 for leaves)
+//   N x u8   child count of each node (0 for leaves; k <= 255)
+//   N x 32   node descriptors (root: zeros)
+//   W x u32  node id of each word (ascending)
+//   W x f64  word weight (idf or 1)
+//   u64      FNV-1a 64 checksum of every byte before it
+// Nodes are in breadth-first order, so a node's children are the ids
+// [first_child, first_child + child_count). With k = 10, L = 5 a file is a few
+// MB and loads in a few milliseconds (one read, no parsing of text).
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "stillslam/core/error.h"
+#include "stillslam/place/vocabulary.h"
+
+namespace stillslam {
+
+static_assert(std::endian::native == std::endian::little, "vocabulary files are little-endian");
+
+namespace {
+
+constexpr char kMagic[8] = {'S', 'T', 'I', 'L', 'L', 'V', 'O', 'C'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::size_t kHeaderBytes = 8 + 4 * 4 + 8 * 2 + 4 * 2;
+
+std::uint64_t fnv1a(const char* p, std::size_t n) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(p[i]);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <typename T>
+  void put(const T& v) {
+    const auto* p = reinterpret_cast<const char*>(&v);
+    bytes_.insert(bytes_.end(), p, p + sizeof(T));
+  }
+  template <typename T>
+  void put_all(const std::vector<T>& v) {
+    const auto* p = reinterpret_cast<const char*>(v.data());
+    bytes_.insert(bytes_.end(), p, p + sizeof(T) * v.size());
+  }
+  std::vector<char>& bytes() { return bytes_; }
+
+ private:
+  std::vector<char> bytes_;
+};
+
+// Bounds-checked sequential reads from the loaded file.
+class Reader {
+ public:
+  Reader(const std::vector<char>& bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
+  template <typename T>
+  T get() {
+    T v;
+    need(sizeof(T));
+    std::memcpy(&v, bytes_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  template <typename T>
+  void get_all(std::vector<T>& v, std::size_t n) {
+    need(sizeof(T) * n);
+    v.resize(n);
+    std::memcpy(v.data(), bytes_.data() + pos_, sizeof(T) * n);
+    pos_ += sizeof(T) * n;
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (pos_ + n > bytes_.size())
+      throw Error("vocabulary file '" + file_ + "' is truncated (" + std::to_string(bytes_.size()) +
+                  " bytes); re-copy it or rebuild it with scripts/train_vocabulary");
+  }
+  const std::vector<char>& bytes_;
+  std::string file_;
+  std::size_t pos_ = 0;
+};
+
+// A DBoW2 text vocabulary starts with "k L scoring weighting" on one line.
+bool looks_like_dbow2_text(const std::vector<char>& bytes) {
+  std::string first_line;
+  for (char c : bytes) {
+    if (c == '\n' || first_line.size() > 64) break;
+    first_line.push_back(c);
+  }
+  std::istringstream in(first_line);
+  int k = 0, l = 0, s = -1, w = -1;
+  return static_cast<bool>(in >> k >> l >> s >> w) && k > 1 && l > 0;
+}
+
+std::vector<char> read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open vocabulary file '" + path.string() + "' (missing or unreadable); pass the path of "
+                       "vocab/orb_vocabulary.bin or one made with `stillslam vocab train`");
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::size_t>(in.tellg());
+  in.seekg(0);
+  std::vector<char> bytes(size);
+  if (size > 0 && !in.read(bytes.data(), static_cast<std::streamsize>(size)))
+    throw Error("cannot read vocabulary file '" + path.string() + "'");
+  return bytes;
+}
+
+}  // namespace
+
+void Vocabulary::save(const std::filesystem::path& path) const {
+  if (empty()) throw Error("cannot save an empty vocabulary to '" + path.string() + "'");
+  Writer w;
+  w.bytes().insert(w.bytes().end(), kMagic, kMagic + 8);
+  w.put(kVersion);
+  w.put(static_cast<std::uint32_t>(branching_));
+  w.put(static_cast<std::uint32_t>(levels_));
+  w.put(static_cast<std::uint32_t>(weighting_));
+  w.put(training_images_);
+  w.put(training_descriptors_);
+  w.put(static_cast<std::uint32_t>(node_count()));
+  w.put(static_cast<std::uint32_t>(size()));
+  w.put_all(first_child_);
+  std::vector<std::uint8_t> counts(child_count_.begin(), child_count_.end());
+  w.put_all(counts);
+  w.put_all(descriptors_);
+  w.put_all(word_node_);
+  w.put_all(word_weight_);
+  w.put(fnv1a(w.bytes().data(), w.bytes().size()));
+
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error("cannot write vocabulary file '" + path.string() + "' (check the folder exists and is writable)");
+  out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
+  if (!out) throw Error("failed writing vocabulary file '" + path.string() + "' (disk full?)");
+}
+
+class VocabularyReader {
+ public:
+  static Vocabulary read(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    const std::vector<char> bytes = read_file(path);
+    const auto corrupt = [&](const std::string& why) {
+      return Error("vocabulary file '" + file + "' is corrupt: " + why +
+                   "; re-copy it or rebuild it with scripts/train_vocabulary");
+    };
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0) {
+      if (looks_like_dbow2_text(bytes))
+        throw Error("'" + file + "' looks like a DBoW2 text vocabulary (e.g. ORB-SLAM's ORBvoc.txt); stillslam "
+                    "reads only its own binary format: use vocab/orb_vocabulary.bin or train one with "
+                    "`stillslam vocab train`");
+      throw Error("'" + file + "' is not a stillslam vocabulary (no STILLVOC header); use "
+                  "vocab/orb_vocabulary.bin or train one with `stillslam vocab train`");
+    }
+    Reader r(bytes, file);
+    r.get<std::uint64_t>();  // magic
+    const auto version = r.get<std::uint32_t>();
+    if (version != kVersion)
+      throw Error("vocabulary file '" + file + "' has format version " + std::to_string(version) +
+                  ", this build reads version " + std::to_string(kVersion) + "; rebuild it with scripts/train_vocabulary");
+    Vocabulary v;
+    v.branching_ = static_cast<int>(r.get<std::uint32_t>());
+    v.levels_ = static_cast<int>(r.get<std::uint32_t>());
+    const auto weighting = r.get<std::uint32_t>();
+    v.training_images_ = r.get<std::uint64_t>();
+    v.training_descriptors_ = r.get<std::uint64_t>();
+    const auto nodes = r.get<std::uint32_t>();
+    const auto words = r.get<std::uint32_t>();
+    if (v.branching_ < 2 || v.branching_ > 255 || v.levels_ < 1 || v.levels_ > 16 || weighting > 3)
+      throw corrupt("bad header (k " + std::to_string(v.branching_) + ", L " + std::to_string(v.levels_) + ")");
+    v.weighting_ = static_cast<WordWeighting>(weighting);
+    if (nodes < 1 || words < 1 || words > nodes) throw corrupt("bad node/word counts");
+    const std::size_t expected = kHeaderBytes + std::size_t{nodes} * (4 + 1 + 32) + std::size_t{words} * (4 + 8) + 8;
+    if (bytes.size() != expected)
+      throw corrupt("size " + std::to_string(bytes.size()) + " bytes, header says " + std::to_string(expected));
+    std::uint64_t stored_checksum;
+    std::memcpy(&stored_checksum, bytes.data() + bytes.size() - 8, 8);
+    if (fnv1a(bytes.data(), bytes.size() - 8) != stored_checksum) throw corrupt("checksum mismatch");
+
+    r.get_all(v.first_child_, nodes);
+    std::vector<std::uint8_t> counts;
+    r.get_all(counts, nodes);
+    v.child_count_.assign(counts.begin(), counts.end());
+    r.get_all(v.descriptors_, nodes);
+    r.get_all(v.word_node_, words);
+    r.get_all(v.word_weight_, words);
+    validate(v, corrupt);
+    v.index_tree();
+    for (NodeId n = 0; n < nodes; ++n)
+      if (v.depth_[n] > v.levels_) throw corrupt("tree deeper than L");
+    return v;
+  }
+
+ private:
+  // Rejects anything transform could trip over: children must be the next
+  // unused ids (breadth-first layout), words must be exactly the leaves.
+  template <typename Corrupt>
+  static void validate(const Vocabulary& v, const Corrupt& corrupt) {
+    const std::size_t n = v.descriptors_.size();
+    std::size_t next = 1;
+    std::size_t leaves = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::uint32_t c = v.child_count_[p];
+      if (c == 0) {
+        ++leaves;
+        continue;
+      }
+      if (c > static_cast<std::uint32_t>(v.branching_) || v.first_child_[p] != next || next + c > n)
+        throw corrupt("inconsistent tree at node " + std::to_string(p));
+      next += c;
+    }
+    if (next != n) throw corrupt("unreachable nodes");
+    if (leaves != v.word_node_.size()) throw corrupt("word count does not match the leaves");
+    for (std::size_t w = 0; w < v.word_node_.size(); ++w) {
+      const NodeId node = v.word_node_[w];
+      if (node >= n || v.child_count_[node] != 0 || (w > 0 && node <= v.word_node_[w - 1]))
+        throw corrupt("bad word " + std::to_string(w));
+      if (!std::isfinite(v.word_weight_[w]) || v.word_weight_[w] < 0) throw corrupt("bad weight of word " + std::to_string(w));
+    }
+  }
+};
+
+Vocabulary Vocabulary::load(const std::filesystem::path& path) { return VocabularyReader::read(path); }
+
+}  // namespace stillslam
