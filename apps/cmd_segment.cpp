@@ -1,11 +1,13 @@
 // `stillslam segment`: run the YOLO-seg front end on one image or a folder of
 // images; print one JSON object per detection on stdout and write binary masks
 // (union of the dynamic classes and one per instance) and overlays into --out.
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -145,6 +147,9 @@ void run_segment(const SegmentArgs& args) {
     fs::create_directories(out / sub, ec);
     if (ec) throw Error("cannot create '" + (out / sub).string() + "': " + ec.message());
   }
+  // Same objects as stdout plus the image name, for sequences.
+  std::ofstream jsonl(out / "detections.jsonl");
+  if (!jsonl) throw Error("cannot write '" + (out / "detections.jsonl").string() + "': check --out is writable");
   std::cerr << "segment: " << images.size() << " image(s), model " << options.model_path << " ("
             << segmenter.input_size().width << "x" << segmenter.input_size().height << ")\n";
   for (const auto& file : images) {
@@ -165,7 +170,11 @@ void run_segment(const SegmentArgs& args) {
       write_png(out / "instances" / (stem + "_" + index + "_" + cls + ".png"), dets[i].mask);
     }
     write_png(out / "overlays" / (stem + ".jpg"), overlay(bgr, dets));
-    for (const auto& d : dets) std::cout << detection_json(d) << '\n';
+    for (const auto& d : dets) {
+      const std::string json = detection_json(d);
+      std::cout << json << '\n';
+      jsonl << R"({"image": )" << nlohmann::json(file.filename().string()).dump() << ", " << json.substr(1) << '\n';
+    }
     std::cout.flush();
     std::cerr << file.filename().string() << ": " << dets.size() << " detection(s), " << static_cast<int>(ms)
               << " ms\n";
@@ -180,7 +189,8 @@ void add_segment_command(CLI::App& app) {
       "segment",
       "Run YOLO instance segmentation on images: one JSON line per detection on stdout "
       "({\"class\", \"class_id\", \"score\", \"box\": [x0, y0, x1, y1]} in image pixels); writes OUT/masks/<image>.png "
-      "(union of the dynamic classes), OUT/instances/<image>_<n>_<class>.png and OUT/overlays/<image>.jpg");
+      "(union of the dynamic classes), OUT/instances/<image>_<n>_<class>.png, OUT/overlays/<image>.jpg and "
+      "OUT/detections.jsonl (the stdout lines with an \"image\" key)");
   cmd->add_option("--config", args->config, "settings YAML (Segmentation.* keys)")->check(CLI::ExistingFile);
   cmd->add_option("--model", args->model, "YOLOv8/YOLO11-seg ONNX file (overrides Segmentation.model)");
   auto* image = cmd->add_option("--image", args->image, "one image file");
