@@ -128,6 +128,8 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
   for (const auto& t : textures) {
     const std::string name = "coco_" + t.id + ".jpg";
     fs::copy_file(t.image, data_dir / "textures" / name, fs::copy_options::overwrite_existing);
+    fs::permissions(data_dir / "textures" / name,
+                    fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
     out.texture_files.push_back(name);
     tex_rows << "| " << name << " | " << t.image.parent_path().filename().string() << "/" << t.id
              << ".jpg | " << cv::format("%.3f", t.score) << " |\n";
@@ -159,7 +161,12 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
       "CC BY-ND, CC BY-NC-ND families; look the id up in COCO's instances_<split>2017.json "
       "`license` field for the exact one and its attribution). COCO annotations: CC BY 4.0. "
       "Use these files for research and testing only.\n\n"
-      "Regenerate with `stillslam simulate --extract-assets <coco128 folder> --data-dir data`.\n\n";
+      "Regenerate with `stillslam simulate --extract-assets <coco128 folder> --data-dir data --cutouts " +
+      std::to_string(options.cutouts) + [&] {
+        std::string list;
+        for (const auto& e : options.exclude) list += " --exclude-cutout " + e;
+        return list;
+      }() + "`.\n\n";
   std::ofstream(data_dir / "textures" / "README.md")
       << "# Photo textures for the simulator\n\n"
       << "COCO photos whose instance labels contain no person (class 1), ranked by how evenly "

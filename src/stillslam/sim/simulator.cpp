@@ -1,5 +1,8 @@
 #include "stillslam/sim/simulator.h"
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -8,6 +11,27 @@
 #include "stillslam/sim/scene_layout.h"
 
 namespace stillslam::sim {
+namespace {
+
+// The room is fixed (about 5 x 6 m); a replayed path that wanders farther
+// would look through the walls. Say so rather than render nonsense silently.
+void warn_if_outside_room(const CameraMotion& motion, const Eigen::Isometry3d& T_world_scene, double seconds) {
+  const Eigen::Isometry3d T_scene_world = T_world_scene.inverse();
+  double worst = 0;
+  for (int i = 0; i <= 200; ++i) {
+    const Eigen::Vector3d p = T_scene_world * motion.pose_at(seconds * i / 200.0).translation();
+    worst = std::max({worst, SceneLayout::kMinX + 0.3 - p.x(), p.x() - SceneLayout::kMaxX + 0.3,
+                      SceneLayout::kMinY + 0.3 - p.y(), p.y() - SceneLayout::kMaxY + 0.3,
+                      SceneLayout::kFloorZ + 0.3 - p.z(), p.z() - SceneLayout::kCeilingZ + 0.2});
+  }
+  if (worst > 0) {
+    spdlog::warn("sim: the camera path leaves the simulated room by up to {:.2f} m; images will show "
+                 "the outside of the walls (use a shorter --frames or a smaller trajectory)",
+                 worst);
+  }
+}
+
+}  // namespace
 
 CameraCalibration camera_from_options(const SimulationOptions& o) {
   if (o.width < 16 || o.height < 16) throw Error("--width/--height must be at least 16 pixels");
@@ -33,6 +57,7 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
   frames_ = static_cast<int>(std::min<double>(options_.frames, available));
   const double seconds = (frames_ - 1) / options_.fps;
   T_world_scene_ = scene_frame_for(motion_, seconds);
+  warn_if_outside_room(motion_, T_world_scene_, seconds);
 
   const AssetLibrary assets = load_assets(options_.data_dir);
   std::vector<MipTexture> textures;
