@@ -168,7 +168,12 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
   frame.set_pose(last_frame_.T_cam_world());
   frame.clear_map_points();
   const LocalMap local = build_local_map(frame, reference_keyframe_.get(), 10);
-  const int matches = search_points(frame, local.points, options_.reference_search_th);
+  int matches = search_points(frame, local.points, options_.reference_search_th);
+  if (matches < kMinReferenceMatches) {
+    // Faster motion than the window allows: three times wider.
+    frame.clear_map_points();
+    matches = search_points(frame, local.points, 3 * options_.reference_search_th);
+  }
   if (matches < kMinReferenceMatches) {
     result.reason = "reference keyframe: " + std::to_string(matches) + " matches";
     return false;
