@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
     cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
     orb->detectAndCompute(gray, cv::noArray(), kps, desc);
   };
-  for (int net_threads : {1, threads}) {
+  for (int net_threads : threads == 1 ? std::vector<int>{1} : std::vector<int>{1, threads}) {
     YoloSegmenter direct(options_for(model, net_threads));
     SegmentationWorker worker(std::make_unique<YoloSegmenter>(options_for(model, net_threads)), {0}, 3);
     std::vector<double> seq_total, seq_orb, seq_seg, par_total, par_orb, par_wait;

@@ -102,8 +102,10 @@ TEST(YoloSegmenter, ImageTypes) {
   EXPECT_THROW(seg.segment(cv::Mat()), Error);
   EXPECT_THROW(seg.segment(cv::Mat(480, 640, CV_16UC1, cv::Scalar(1000))), Error);
   EXPECT_THROW(seg.segment(cv::Mat(480, 640, CV_32FC3, cv::Scalar::all(0.5))), Error);
-  // A flat gray frame has nothing in it.
+  // A flat gray frame has nothing in it, whatever its shape.
   EXPECT_TRUE(seg.segment(cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(114))).empty());
+  EXPECT_TRUE(seg.segment(cv::Mat(3, 4000, CV_8UC3, cv::Scalar::all(114))).empty());
+  EXPECT_TRUE(seg.segment(cv::Mat(1, 1, CV_8UC3, cv::Scalar::all(114))).empty());
 
   // Gray input is replicated to BGR: same people found as in the color image, near the same places.
   const cv::Mat color = cv::imread(test::bus_image());

@@ -14,8 +14,8 @@ Letterbox Letterbox::fit(cv::Size frame, cv::Size input) {
   lb.scale = std::min(static_cast<double>(input.width) / frame.width, static_cast<double>(input.height) / frame.height);
   lb.resized = cv::Size(static_cast<int>(std::lround(frame.width * lb.scale)),
                         static_cast<int>(std::lround(frame.height * lb.scale)));
-  lb.resized.width = std::min(lb.resized.width, input.width);
-  lb.resized.height = std::min(lb.resized.height, input.height);
+  lb.resized.width = std::clamp(lb.resized.width, 1, input.width);  // >= 1 even for a 1x5000 strip
+  lb.resized.height = std::clamp(lb.resized.height, 1, input.height);
   // Same rounding as Ultralytics (round(d/2 - 0.1)) so boxes match its reference outputs.
   lb.pad_x = static_cast<int>(std::lround((input.width - lb.resized.width) / 2.0 - 0.1));
   lb.pad_y = static_cast<int>(std::lround((input.height - lb.resized.height) / 2.0 - 0.1));
