@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "invariance_helpers.h"
@@ -130,6 +131,39 @@ TEST_F(OrbInvariance, RotationAndScaleTogether) {
   print("rotation -45 scale 1.3", s);
   EXPECT_GE(s.match_precision, kMinPrecCombo);
   EXPECT_GE(s.correct_matches, kMinCorrectCombo);
+}
+
+}  // namespace stillslam
+
+namespace stillslam {
+
+// The generated (unlearned, Gaussian G II) pattern against OpenCV's learned
+// rBRIEF pattern, both computed on our keypoints: correct matches over four
+// warps. Measured: ours 1415, OpenCV's pattern 1422 (a learned table buys
+// nothing measurable here, so none is used).
+TEST(OrbDescriptor, GeneratedPatternMatchesAsWellAsLearnedOne) {
+  const cv::Mat image = test::textured_image();
+  const OrbExtractor extractor{OrbOptions{}};
+  const cv::Ptr<cv::ORB> opencv = cv::ORB::create(5000, 1.2f, 8, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, 20);
+  auto with_opencv_pattern = [&](const cv::Mat& im, const OrbFeatures& f) {
+    OrbFeatures out;
+    out.keypoints = f.keypoints;
+    opencv->compute(im, out.keypoints, out.descriptors);
+    return out;
+  };
+  int ours = 0, learned = 0;
+  for (auto [angle, scale] : {std::pair{30.0, 1.0}, {0.0, 1.3}, {-45.0, 1.2}, {10.0, 1.0}}) {
+    const Warped w = similarity(image, angle, scale);
+    const OrbFeatures a = extractor.extract(image), b = extractor.extract(w.image);
+    ours += test::invariance_scores(a, b, w.image.size(), w.map).correct_matches;
+    learned += test::invariance_scores(with_opencv_pattern(image, a), with_opencv_pattern(w.image, b),
+                                       w.image.size(), w.map)
+                   .correct_matches;
+  }
+  std::cout << "[ measure ] correct matches over 4 warps: generated pattern " << ours << ", OpenCV learned pattern "
+            << learned << "\n";
+  EXPECT_GE(ours, 0.93 * learned);
+  EXPECT_GE(ours, 1300);
 }
 
 }  // namespace stillslam
