@@ -140,6 +140,13 @@ TEST(OrbExtractor, BadInputsGiveClearErrors) {
   EXPECT_THROW(extractor.extract(cv::Mat(480, 640, CV_32FC1, cv::Scalar::all(0))), Error);
   // Tiny and flat images are valid input with no features.
   EXPECT_TRUE(extractor.extract(cv::Mat(20, 20, CV_8UC1, cv::Scalar(0))).empty());
+  std::vector<cv::Mat> pyramid;
+  EXPECT_TRUE(extractor.extract(cv::Mat(2, 3, CV_8UC1, cv::Scalar(7)), &pyramid).empty());
+  EXPECT_EQ(pyramid.size(), 8u);
+  // A non-continuous ROI of a larger image is fine.
+  const cv::Mat big = test::textured_image();
+  const OrbFeatures roi = extractor.extract(big(cv::Rect(100, 50, 400, 300)));
+  EXPECT_GE(roi.size(), 950u);
   EXPECT_TRUE(extractor.extract(cv::Mat(480, 640, CV_8UC1, cv::Scalar(128))).empty());
 }
 

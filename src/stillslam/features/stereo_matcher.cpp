@@ -75,8 +75,10 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
   // Right keypoints indexed by every image row of their epipolar band.
   const int rows = left_pyramid[0].rows;
   std::vector<std::vector<std::size_t>> by_row(static_cast<std::size_t>(rows));
+  auto valid_level = [&](int octave) { return octave >= 0 && octave < pyramid.n_levels; };
   for (std::size_t i = 0; i < right.keypoints.size(); ++i) {
     const cv::KeyPoint& kp = right.keypoints[i];
+    if (!valid_level(kp.octave)) continue;
     const float band = options.row_band * pyramid.scale[static_cast<std::size_t>(kp.octave)];
     const int r0 = std::max(0, static_cast<int>(std::floor(kp.pt.y - band)));
     const int r1 = std::min(rows - 1, static_cast<int>(std::ceil(kp.pt.y + band)));
@@ -93,6 +95,7 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
   for (std::size_t i = 0; i < n; ++i) {
     const cv::KeyPoint& kl = left.keypoints[i];
     const int level = kl.octave;
+    if (!valid_level(level)) continue;
     const float ul = kl.pt.x, vl = kl.pt.y;
     const int row = static_cast<int>(std::lround(vl));
     if (row < 0 || row >= rows) continue;
