@@ -133,6 +133,23 @@ TEST(OrbExtractor, DeterministicAndThreadSafe) {
   }
 }
 
+TEST(OrbExtractor, SameOutputWithOneOrTwoThreads) {
+  const cv::Mat image = test::textured_image();
+  const OrbExtractor extractor{OrbOptions{}};
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  const OrbFeatures serial = extractor.extract(image);
+  cv::setNumThreads(std::max(2, threads));
+  const OrbFeatures parallel = extractor.extract(image);
+  cv::setNumThreads(threads);
+  ASSERT_EQ(serial.size(), parallel.size());
+  for (std::size_t i = 0; i < serial.size(); ++i) {
+    ASSERT_EQ(serial.keypoints[i].pt, parallel.keypoints[i].pt);
+    ASSERT_EQ(serial.keypoints[i].angle, parallel.keypoints[i].angle);
+  }
+  EXPECT_EQ(cv::norm(serial.descriptors, parallel.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
 TEST(OrbExtractor, BadInputsGiveClearErrors) {
   const OrbExtractor extractor{OrbOptions{}};
   EXPECT_THROW(extractor.extract(cv::Mat()), Error);
