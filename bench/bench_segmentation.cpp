@@ -2,7 +2,7 @@
 // inputs against the 480x640 model, and ORB extraction overlapped with
 // segmentation (SegmentationWorker) versus run one after the other.
 //
-//   build/bench/bench_segmentation [--runs N] [--threads T] [--frames F] [--source REPO_DIR]
+//   build/bench/bench_segmentation [--runs N] [--threads T] [--frames F] [--coco C] [--source REPO_DIR]
 //
 // Reads the models in models/ and, when present, ../shared/models/yolo-seg
 // (REPO_DIR defaults to the checkout this file was compiled from).
@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,12 +92,14 @@ int main(int argc, char** argv) {
   int runs = 20;
   int threads = 2;
   int frames = 20;
+  int coco = 30;
   std::string src = fs::path(__FILE__).parent_path().parent_path().string();
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--runs") runs = std::stoi(argv[i + 1]);
     if (a == "--threads") threads = std::stoi(argv[i + 1]);
     if (a == "--frames") frames = std::stoi(argv[i + 1]);
+    if (a == "--coco") coco = std::stoi(argv[i + 1]);
     if (a == "--source") src = argv[i + 1];
   }
   const std::string shared = src + "/../shared";
@@ -156,6 +159,60 @@ int main(int argc, char** argv) {
   std::printf("(median of %d runs: wall-clock ms on bus.jpg 810x1080 and a 640x480 frame, process CPU ms on the\n"
               " 640x480 frame; persons found in bus/busstop; IoU = mean person-mask IoU against yolo11n-seg 480x640)\n",
               runs);
+
+  // Person-pixel accuracy against COCO ground-truth polygons (coco128 photos with people):
+  // what the dynamic mask should cover. Summed over the images.
+  const fs::path coco_dir = shared + "/images/coco128";
+  std::vector<std::pair<fs::path, std::vector<std::vector<cv::Point2f>>>> coco_images;  // image, person polygons
+  if (coco > 0 && fs::exists(coco_dir / "labels")) {
+    std::vector<fs::path> labels;
+    for (const auto& e : fs::recursive_directory_iterator(coco_dir / "labels"))
+      if (e.path().extension() == ".txt") labels.push_back(e.path());
+    std::sort(labels.begin(), labels.end());
+    for (const auto& label : labels) {
+      std::ifstream in(label);
+      std::vector<std::vector<cv::Point2f>> polys;
+      for (std::string line; std::getline(in, line);) {
+        std::istringstream ls(line);
+        int cls = -1;
+        ls >> cls;
+        if (cls != 1) continue;  // coco128 labels use COCO category ids: 1 = person
+        std::vector<cv::Point2f> poly;
+        for (float x, y; ls >> x >> y;) poly.emplace_back(x, y);
+        polys.push_back(poly);
+      }
+      const fs::path image = coco_dir / "images" / label.parent_path().filename() / (label.stem().string() + ".jpg");
+      if (!polys.empty() && fs::exists(image)) coco_images.emplace_back(image, polys);
+      if (static_cast<int>(coco_images.size()) == coco) break;
+    }
+  }
+  if (!coco_images.empty()) {
+    std::vector<double> inter(segs.size()), uni(segs.size()), pred(segs.size());
+    double gt_total = 0;
+    for (const auto& [path, polys] : coco_images) {
+      const cv::Mat img = cv::imread(path.string());
+      cv::Mat1b gt(img.size(), uchar{0});
+      std::vector<std::vector<cv::Point>> pix;
+      for (const auto& poly : polys) {
+        std::vector<cv::Point> p;
+        for (const auto& q : poly) p.emplace_back(cvRound(q.x * img.cols), cvRound(q.y * img.rows));
+        pix.push_back(p);
+      }
+      cv::fillPoly(gt, pix, cv::Scalar(255));
+      gt_total += cv::countNonZero(gt);
+      for (std::size_t m = 0; m < segs.size(); ++m) {
+        const cv::Mat1b mask = dynamic_mask(segs[m]->segment(img), {0}, img.size(), 0);
+        inter[m] += cv::countNonZero(mask & gt);
+        uni[m] += cv::countNonZero(mask | gt);
+        pred[m] += cv::countNonZero(mask);
+      }
+    }
+    std::printf("\nperson pixels vs COCO ground truth, %zu coco128 photos with people:\n", coco_images.size());
+    std::printf("%-28s %8s %8s %10s\n", "model", "IoU", "recall", "precision");
+    for (std::size_t m = 0; m < segs.size(); ++m)
+      std::printf("%-28s %8.3f %8.3f %10.3f\n", fs::path(models[m]).filename().c_str(), inter[m] / uni[m],
+                  inter[m] / gt_total, pred[m] > 0 ? inter[m] / pred[m] : 0.0);
+  }
   segs.clear();
 
   // 2. ORB extraction of frame k overlapped with segmentation of frame k.

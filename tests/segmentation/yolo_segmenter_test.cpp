@@ -145,3 +145,26 @@ TEST(YoloSegmenter, MasksForClassesOnly) {
 
 }  // namespace
 }  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+// The published uint8 originals use DynamicQuantizeLinear, which OpenCV 4.6 cannot import.
+TEST(YoloSegmenter, QuantizedOriginalIsAClearError) {
+  const std::string model = test::shared_model("yolo11n-seg_uint8_480x640.onnx");
+  if (!test::exists(model)) GTEST_SKIP() << "needs " << model << " (../shared is not part of a checkout)";
+  SegmentationOptions o;
+  o.model_path = model;
+  o.threads = 0;
+  try {
+    YoloSegmenter s(o);
+    FAIL() << "loaded a model OpenCV 4.6 cannot run";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("OpenCV DNN cannot load segmentation model"), std::string::npos) << what;
+    EXPECT_NE(what.find("DynamicQuantizeLinear"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace stillslam
