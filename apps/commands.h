@@ -9,5 +9,6 @@ void add_eval_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace stillslam::apps
