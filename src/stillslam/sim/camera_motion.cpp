@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "stillslam/core/error.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/sim/random.h"
 #include "stillslam/sim/scene_layout.h"
 
 namespace stillslam::sim {
@@ -42,9 +42,8 @@ Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& tar
 CameraMotion CameraMotion::create(const std::string& name, const fs::path& data_dir,
                                   std::uint64_t seed) {
   CameraMotion m;
-  std::mt19937_64 rng(seed * 7919 + 17);
-  std::uniform_real_distribution<double> phase(0.0, kTwoPi);
-  for (double& p : m.phase_) p = phase(rng);
+  SplitMix rng(seed * 7919 + 17);
+  for (double& p : m.phase_) p = rng.uniform(0.0, kTwoPi);
   m.start_ns_ = static_cast<std::int64_t>(kGeneratedStart) * 1000000000LL;
   m.duration_ = 1e9;
   if (name == "halfsphere") {

@@ -26,18 +26,11 @@ void tile(PanelPainter& p, const V& origin, const V& u, const V& v, double size_
 }  // namespace
 
 PanelPainter::PanelPainter(const std::vector<cv::Size>& texture_sizes, std::uint64_t seed)
-    : sizes_(texture_sizes), state_(seed * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL) {
+    : sizes_(texture_sizes), rng_(seed) {
   if (sizes_.empty()) throw Error("sim scene: no textures to paint with");
 }
 
-// splitmix64: tiny, portable and identical on every platform (unlike std distributions).
-double PanelPainter::uniform(double a, double b) {
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return a + (b - a) * (static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0));
-}
+double PanelPainter::uniform(double a, double b) { return rng_.uniform(a, b); }
 
 Quad PanelPainter::panel(const V& origin, const V& axis_u, const V& axis_v, float bmin, float bmax) {
   Quad q;

@@ -11,6 +11,7 @@
 
 #include "stillslam/sim/camera_motion.h"
 #include "stillslam/sim/quad.h"
+#include "stillslam/sim/random.h"
 
 namespace stillslam::sim {
 
@@ -45,7 +46,7 @@ class PanelPainter {
 
  private:
   std::vector<cv::Size> sizes_;
-  std::uint64_t state_;
+  SplitMix rng_;
 };
 
 }  // namespace stillslam::sim
