@@ -20,6 +20,9 @@ struct FrameStats {
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
   double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)
   double total_ms = 0;     // frame builder + tracker (+ synchronous mapping)
+  double tracking_cpu_ms = 0;  // CPU time of the calling thread in the tracker
+  double total_cpu_ms = 0;     // CPU time of the calling thread for the whole frame
+                               // (without the segmentation worker / right-image thread)
   bool has_pose = false;
 };
 

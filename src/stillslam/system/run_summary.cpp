@@ -21,7 +21,7 @@ TimingSummary summarize_times(std::vector<double> v) {
 RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   RunSummary s;
   s.frames = frames.size();
-  std::vector<double> total, tracking, extraction, wait;
+  std::vector<double> total, tracking, extraction, wait, total_cpu, tracking_cpu, extraction_cpu;
   double before = 0, after = 0, inliers = 0;
   for (const FrameStats& f : frames) {
     s.tracked += f.has_pose ? 1 : 0;
@@ -31,6 +31,9 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
     tracking.push_back(f.tracking_ms);
     extraction.push_back(f.build.extraction_ms);
     wait.push_back(f.build.segmentation_wait_ms);
+    total_cpu.push_back(f.total_cpu_ms);
+    tracking_cpu.push_back(f.tracking_cpu_ms);
+    extraction_cpu.push_back(f.build.extraction_cpu_ms);
     before += f.build.keypoints_before;
     after += f.build.keypoints_after;
     inliers += f.inliers;
@@ -39,6 +42,9 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   s.tracking_ms = summarize_times(tracking);
   s.extraction_ms = summarize_times(extraction);
   s.segmentation_wait_ms = summarize_times(wait);
+  s.total_cpu_ms = summarize_times(total_cpu);
+  s.tracking_cpu_ms = summarize_times(tracking_cpu);
+  s.extraction_cpu_ms = summarize_times(extraction_cpu);
   s.extraction_share = s.total_ms.mean > 0 ? s.extraction_ms.mean / s.total_ms.mean : 0;
   if (!frames.empty()) {
     const double n = static_cast<double>(frames.size());
@@ -71,7 +77,10 @@ nlohmann::json to_json(const FrameStats& f) {
             {"frame_build", f.build.total_ms},
             {"tracking", f.tracking_ms},
             {"mapping_inline", f.mapping_ms},
-            {"total", f.total_ms}}}};
+            {"total", f.total_ms},
+            {"extraction_cpu", f.build.extraction_cpu_ms},
+            {"tracking_cpu", f.tracking_cpu_ms},
+            {"total_cpu", f.total_cpu_ms}}}};
 }
 
 nlohmann::json to_json(const TimingSummary& t) {
@@ -91,7 +100,10 @@ nlohmann::json to_json(const RunSummary& s) {
            {{"total", to_json(s.total_ms)},
             {"tracking", to_json(s.tracking_ms)},
             {"extraction", to_json(s.extraction_ms)},
-            {"segmentation_wait", to_json(s.segmentation_wait_ms)}}},
+            {"segmentation_wait", to_json(s.segmentation_wait_ms)},
+            {"total_cpu", to_json(s.total_cpu_ms)},
+            {"tracking_cpu", to_json(s.tracking_cpu_ms)},
+            {"extraction_cpu", to_json(s.extraction_cpu_ms)}}},
           {"extraction_share", s.extraction_share}};
 }
 

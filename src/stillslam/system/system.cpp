@@ -4,6 +4,7 @@
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
+#include "stillslam/tracking/thread_cpu_stopwatch.h"
 
 namespace stillslam {
 
@@ -67,13 +68,16 @@ void System::shutdown() {
 
 FrameStats System::process(const SensorFrame& input) {
   Stopwatch total;
+  ThreadCpuStopwatch total_cpu;
   FrameStats stats;
   stats.index = input.index;
   stats.timestamp = input.timestamp;
   Frame frame = builder_->build(input, next_frame_id_++, &stats.build);
   Stopwatch tracking;
+  ThreadCpuStopwatch tracking_cpu;
   const TrackingResult result = tracker_->track(frame);
   stats.tracking_ms = tracking.elapsed_ms();
+  stats.tracking_cpu_ms = tracking_cpu.elapsed_ms();
   stats.state = result.state;
   stats.reason = result.reason;
   stats.matches = result.matches;
@@ -93,6 +97,7 @@ FrameStats System::process(const SensorFrame& input) {
     stats.mapping_ms = mapping.elapsed_ms();
   }
   stats.total_ms = total.elapsed_ms();
+  stats.total_cpu_ms = total_cpu.elapsed_ms();
   return stats;
 }
 

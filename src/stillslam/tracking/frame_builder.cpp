@@ -6,6 +6,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/dynamic_mask.h"
+#include "stillslam/tracking/thread_cpu_stopwatch.h"
 
 namespace stillslam {
 
@@ -54,12 +55,14 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
 
   // 2. ORB on left (this thread) and right (second core) in parallel.
   Stopwatch extraction;
+  ThreadCpuStopwatch extraction_cpu;
   std::vector<cv::Mat> left_pyramid, right_pyramid;
   std::future<OrbFeatures> right_future;
   if (stereo) {
     right_future = std::async(std::launch::async, [&] { return extractor_.extract(input.right, &right_pyramid); });
   }
   OrbFeatures left = extractor_.extract(input.gray, stereo ? &left_pyramid : nullptr);
+  st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
   OrbFeatures right;
   if (stereo) right = right_future.get();
   st.extraction_ms = extraction.elapsed_ms();

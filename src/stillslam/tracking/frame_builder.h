@@ -23,6 +23,7 @@ struct FrameBuildStats {
   int detections = 0;        // all detections of the segmenter
   double mask_coverage = 0;  // fraction of the image in the dynamic mask
   double extraction_ms = 0;  // ORB (left and right in parallel)
+  double extraction_cpu_ms = 0;  // CPU time of this thread in the left-image extraction
   double segmentation_ms = 0;       // segmenter time on its own thread
   double segmentation_wait_ms = 0;  // time this thread waited for the mask
   double association_ms = 0;        // stereo matching / depth lookup
