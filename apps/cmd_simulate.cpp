@@ -17,7 +17,7 @@ struct SimulateArgs {
   std::string out;
   std::string extract_from;
   int cutouts = 12;
-  std::vector<std::string> exclude;
+  std::vector<std::string> exclude, sitting;
 };
 
 void run_simulate(const SimulateArgs& args) {
@@ -25,6 +25,7 @@ void run_simulate(const SimulateArgs& args) {
     sim::AssetExtractionOptions ex;
     ex.cutouts = args.cutouts;
     ex.exclude = args.exclude;
+    ex.sitting = args.sitting;
     const auto data = args.options.data_dir.empty() ? std::filesystem::path("data") : args.options.data_dir;
     const auto r = sim::extract_assets(args.extract_from, data, ex);
     spdlog::info("wrote {} textures and {} cut-outs into {}", r.texture_files.size(),
@@ -54,7 +55,7 @@ void add_simulate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--frames", o.frames, "Number of frames (30 Hz)")->capture_default_str();
   cmd->add_option("--people", o.people, "Walking people")->capture_default_str();
-  cmd->add_option("--still-people", o.still_people, "People standing still in view")->capture_default_str();
+  cmd->add_option("--still-people", o.still_people, "People who stay (almost) still: seated on a chair behind the desk")->capture_default_str();
   cmd->add_flag("--moved-object", o.moved_object, "A box on the desk is picked up and moved");
   cmd->add_flag("--no-people", o.no_people, "No moving things: static reference of the same sequence");
   cmd->add_option("--seed", o.seed, "Random seed (scene, people, noise)")->capture_default_str();
@@ -72,6 +73,8 @@ void add_simulate_command(CLI::App& app) {
                   "Rebuild data/textures and data/cutouts from this COCO128 YOLO-seg folder, then exit");
   cmd->add_option("--cutouts", args->cutouts, "With --extract-assets: number of cut-outs")
       ->capture_default_str();
+  cmd->add_option("--sitting-cutout", args->sitting,
+                  "With --extract-assets: export this instance as a seated person (<image id>_<index>)");
   cmd->add_option("--exclude-cutout", args->exclude,
                   "With --extract-assets: skip this instance (<image id>_<index>)");
   cmd->callback([args] { run_simulate(*args); });

@@ -72,7 +72,7 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
     throw Error("sim assets: " + coco_dir.string() +
                 " must be a COCO128 YOLO-seg folder with images/ and labels/");
   }
-  std::vector<Candidate> textures, people;
+  std::vector<Candidate> textures, people, sitting;
   std::vector<fs::path> images;
   for (const auto& e : fs::recursive_directory_iterator(coco_dir / "images")) {
     if (e.is_regular_file() && e.path().extension() == ".jpg") images.push_back(e.path());
@@ -107,10 +107,14 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
       }
       if (overlapped) continue;
       const std::string key = stem_of(img_path) + "_" + std::to_string(i);
-      if (std::find(options.exclude.begin(), options.exclude.end(), key) != options.exclude.end()) {
-        continue;
+      const auto listed = [&](const std::vector<std::string>& list) {
+        return std::find(list.begin(), list.end(), key) != list.end();
+      };
+      if (listed(options.sitting)) {
+        sitting.push_back({img_path, stem_of(img_path), b.height, *persons[i], static_cast<int>(i)});
+      } else if (!listed(options.exclude)) {
+        people.push_back({img_path, stem_of(img_path), b.height, *persons[i], static_cast<int>(i)});
       }
-      people.push_back({img_path, stem_of(img_path), b.height, *persons[i], static_cast<int>(i)});
     }
   }
   auto by_score = [](const Candidate& a, const Candidate& b) {
@@ -120,6 +124,8 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
   std::sort(people.begin(), people.end(), by_score);
   textures.resize(std::min<size_t>(textures.size(), options.textures));
   people.resize(std::min<size_t>(people.size(), options.cutouts));
+  for (auto& p : sitting) p.index = -1 - p.index;  // marks "sitting" below, keeps the instance number
+  people.insert(people.end(), sitting.begin(), sitting.end());
 
   ExtractedAssets out;
   fs::create_directories(data_dir / "textures");
@@ -147,11 +153,14 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
     cv::split(bgra, ch);
     ch[3] = alpha;
     cv::merge(ch, bgra);
-    const std::string name = "person_" + p.id + "_" + std::to_string(p.index) + ".png";
+    const bool seated = p.index < 0;
+    const int index = seated ? -1 - p.index : p.index;
+    const std::string name = (seated ? "sitting_" : "person_") + p.id + "_" + std::to_string(index) + ".png";
     cv::imwrite((data_dir / "cutouts" / name).string(), bgra(crop));
     out.cutout_files.push_back(name);
     cut_rows << "| " << name << " | " << p.image.parent_path().filename().string() << "/" << p.id
-             << ".jpg | person polygon #" << p.index << " | " << crop.width << "x" << crop.height
+             << ".jpg | person polygon #" << index << (seated ? " (sitting)" : "") << " | " << crop.width
+             << "x" << crop.height
              << " |\n";
   }
   const std::string license =
@@ -165,6 +174,7 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
       std::to_string(options.cutouts) + [&] {
         std::string list;
         for (const auto& e : options.exclude) list += " --exclude-cutout " + e;
+        for (const auto& e : options.sitting) list += " --sitting-cutout " + e;
         return list;
       }() + "`.\n\n";
   std::ofstream(data_dir / "textures" / "README.md")
@@ -178,7 +188,8 @@ ExtractedAssets extract_assets(const fs::path& coco_dir, const fs::path& data_di
       << "RGBA crops of COCO person instances: alpha = the COCO polygon (so the simulator's "
          "ground-truth masks are exact). Chosen: whole body (bbox height >= "
       << options.min_person_height << " px, height/width >= " << options.min_aspect
-      << "), not touching the image border, not overlapping another person; largest first.\n\n"
+      << "), not touching the image border, not overlapping another person; largest first. "
+         "sitting_*.png are seated people (chosen by hand) for people who stay still.\n\n"
       << "Excluded after looking at them (cut off by furniture or the frame edge, crouching, "
          "sitting, polygon artefacts):";
   std::ofstream(data_dir / "cutouts" / "README.md", std::ios::app)

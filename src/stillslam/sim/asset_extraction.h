@@ -18,6 +18,8 @@ struct AssetExtractionOptions {
   double min_aspect = 1.4;       // bbox height / width: standing, whole body
   // Cut-outs to skip after visual inspection (e.g. "000000000257_0"), with the reason in the README.
   std::vector<std::string> exclude;
+  // Seated people, written as sitting_<id>_<index>.png (used for people who stay still).
+  std::vector<std::string> sitting;
 };
 
 struct ExtractedAssets {

@@ -70,8 +70,10 @@ AssetLibrary load_assets(const fs::path& data_dir) {
     if (img.empty() || img.type() != CV_8UC4) {
       throw Error("sim: cut-out " + p.string() + " must be an 8-bit RGBA PNG");
     }
-    lib.cutouts.push_back(img);
-    lib.cutout_names.push_back(p.filename().string());
+    const std::string name = p.filename().string();
+    const bool seated = name.rfind("sitting_", 0) == 0;
+    (seated ? lib.sitting : lib.cutouts).push_back(img);
+    (seated ? lib.sitting_names : lib.cutout_names).push_back(name);
   }
   if (lib.textures.empty()) throw Error("sim: no textures in " + (data_dir / "textures").string());
   if (lib.cutouts.empty()) throw Error("sim: no cut-outs in " + (data_dir / "cutouts").string());

@@ -12,7 +12,8 @@ namespace stillslam::sim {
 struct AssetLibrary {
   std::vector<cv::Mat> textures;  // CV_8UC3 photos without people, sorted by file name
   std::vector<cv::Mat> cutouts;   // CV_8UC4 people; alpha = COCO polygon, cropped to the person
-  std::vector<std::string> texture_names, cutout_names;
+  std::vector<cv::Mat> sitting;   // CV_8UC4 seated people (cutouts/sitting_*.png)
+  std::vector<std::string> texture_names, cutout_names, sitting_names;
 };
 
 // The repo's data/ folder: $STILLSLAM_DATA_DIR, else the first data/ with
@@ -20,7 +21,7 @@ struct AssetLibrary {
 // working directory. Throws stillslam::Error naming the variable to set.
 std::filesystem::path find_data_dir();
 
-// Loads data_dir/textures/*.{jpg,png} and data_dir/cutouts/*.png.
+// Loads data_dir/textures/*.{jpg,png} and data_dir/cutouts/*.png (sitting_*.png apart).
 AssetLibrary load_assets(const std::filesystem::path& data_dir);
 
 }  // namespace stillslam::sim

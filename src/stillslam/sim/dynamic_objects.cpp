@@ -21,6 +21,8 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
                                const Eigen::Isometry3d& T_world_scene,
                                const std::vector<int>& cutout_textures,
                                const std::vector<cv::Size>& cutout_sizes,
+                               const std::vector<int>& sitting_textures,
+                               const std::vector<cv::Size>& sitting_sizes,
                                const std::vector<cv::Size>& texture_sizes, std::uint64_t seed)
     : options_(options), T_world_scene_(T_world_scene) {
   PanelPainter rng(texture_sizes, seed * 31 + 7);
@@ -40,8 +42,9 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
     PersonTrack p = make(i);
     // Alternate: close in front of the desk (covers up to half the image), then behind it.
     const bool near = i % 2 == 0;
-    const double y = near ? rng.uniform(0.8, 1.25) : rng.uniform(2.55, 3.0);
-    const double slant = rng.uniform(-0.25, 0.25);
+    // Far paths run between the chairs and the front wall.
+    const double y = near ? rng.uniform(0.8, 1.25) : rng.uniform(3.05, 3.15);
+    const double slant = near ? rng.uniform(-0.25, 0.25) : rng.uniform(-0.08, 0.08);
     const double xa = near ? -1.6 : -2.3, xb = near ? 2.3 : 1.15;
     const bool flip = rng.uniform(0, 1) < 0.5;
     p.a = Eigen::Vector2d(flip ? xb : xa, y - slant);
@@ -53,8 +56,15 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
   }
   for (int i = 0; i < options.still && n_cut > 0; ++i) {
     PersonTrack p = make(options.walking + i);
+    if (!sitting_textures.empty()) {
+      const int c = i % static_cast<int>(sitting_textures.size());
+      p.texture = sitting_textures[c];
+      p.aspect = static_cast<double>(sitting_sizes[c].width) / sitting_sizes[c].height;
+      p.height = rng.uniform(1.2, 1.3);  // seated, feet on the floor
+    }
     p.still = true;
-    p.a = p.b = Eigen::Vector2d(-1.3 + 1.6 * i, 2.9 + 0.1 * i);
+    const Eigen::Vector3d chair = SceneLayout::chair_front(i % 2);
+    p.a = p.b = Eigen::Vector2d(chair.x(), chair.y() - 0.5 * (i / 2));
     people_.push_back(p);
   }
   if (options.moved_box) {

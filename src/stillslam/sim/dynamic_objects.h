@@ -1,8 +1,10 @@
 #pragma once
 // Everything that moves: people (RGBA billboards at human height, always
 // facing the camera, walking back and forth across the view with a little
-// bob and sway), people standing still, and a box carried across the desk.
-// Each gets its own Quad::dynamic_id so masks can be told apart.
+// bob and sway), people who stay still (seated on the chairs behind the desk,
+// swaying slightly), and a box carried across the desk. Each gets its own
+// Quad::dynamic_id so masks can be told apart; the box is marked dynamic only
+// while it moves (before and after it is part of the static scene).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -35,8 +37,10 @@ struct DynamicObjectsOptions {
 class DynamicObjects {
  public:
   // cutout_textures: renderer texture indices of the cut-outs; cutout_sizes: their pixel sizes.
+  // sitting_*: the same for seated people (may be empty: still people then stand).
   DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
                  const std::vector<int>& cutout_textures, const std::vector<cv::Size>& cutout_sizes,
+                 const std::vector<int>& sitting_textures, const std::vector<cv::Size>& sitting_sizes,
                  const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
 
   // Quads at time t (seconds since the start); billboards face camera_world.

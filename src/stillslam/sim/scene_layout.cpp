@@ -122,6 +122,12 @@ std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
   p.box(V(1.3, 3.2, f), V(2.5, 3.78, 0.4), q);              // cabinet, front right
   p.box(V(-1.0, -2.18, f), V(1.0, -1.8, 0.6), q);           // shelf behind
   p.box(V(-0.35, 2.05, L::kDeskTopZ), V(0.35, 2.12, -0.22), q);  // monitor
+  // Two chairs behind the desk: seat and backrest.
+  for (int i = 0; i < 2; ++i) {
+    const V c = L::chair_front(i);
+    p.box(V(c.x() - 0.23, c.y() + 0.02, f), V(c.x() + 0.23, c.y() + 0.46, f + 0.46), q);
+    p.box(V(c.x() - 0.23, c.y() + 0.42, f + 0.46), V(c.x() + 0.23, c.y() + 0.47, f + 0.95), q);
+  }
   // Clutter on the desk and the side table.
   for (int i = 0; i < 3; ++i) {
     const double sx = p.uniform(0.12, 0.3), sy = p.uniform(0.12, 0.3), sz = p.uniform(0.08, 0.3);

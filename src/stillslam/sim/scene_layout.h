@@ -20,6 +20,9 @@ struct SceneLayout {
   static constexpr double kMinX = -2.6, kMaxX = 2.6, kMinY = -2.2, kMaxY = 3.8;
   static constexpr double kDeskTopZ = -0.65;
   static Eigen::Vector3d desk_centre() { return {0.0, 1.9, kDeskTopZ}; }
+  // Floor point at the front edge of chair i (0 or 1) behind the desk, where a
+  // seated person's billboard stands.
+  static Eigen::Vector3d chair_front(int i) { return {i == 0 ? -1.25 : 1.0, 2.5, kFloorZ}; }
 };
 
 // Where the scene frame sits in the trajectory's world frame. Generated paths

@@ -62,7 +62,8 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
   const AssetLibrary assets = load_assets(options_.data_dir);
   std::vector<MipTexture> textures;
   std::vector<cv::Size> texture_sizes, cutout_sizes;
-  std::vector<int> cutout_ids;
+  std::vector<int> cutout_ids, sitting_ids;
+  std::vector<cv::Size> sitting_sizes;
   for (const auto& t : assets.textures) {
     textures.emplace_back(t);
     texture_sizes.push_back(t.size());
@@ -72,6 +73,11 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
     textures.emplace_back(c);
     cutout_sizes.push_back(c.size());
   }
+  for (const auto& c : assets.sitting) {
+    sitting_ids.push_back(static_cast<int>(textures.size()));
+    textures.emplace_back(c);
+    sitting_sizes.push_back(c.size());
+  }
   renderer_ = std::make_unique<Renderer>(camera_from_options(options_), std::move(textures));
   static_quads_ = build_static_scene(T_world_scene_, texture_sizes, options_.seed);
   DynamicObjectsOptions dyn;
@@ -79,8 +85,8 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
   dyn.still = options_.no_people ? 0 : std::max(0, options_.still_people);
   dyn.moved_box = options_.moved_object;
   dyn.duration = seconds;
-  dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, cutout_ids, cutout_sizes,
-                                              texture_sizes, options_.seed);
+  dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, cutout_ids, cutout_sizes, sitting_ids,
+                                              sitting_sizes, texture_sizes, options_.seed);
 }
 
 Eigen::Isometry3d Simulator::T_left_right() const {
