@@ -10,5 +10,6 @@ void add_run_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_vocab_command(CLI::App& app);
 
 }  // namespace stillslam::apps
