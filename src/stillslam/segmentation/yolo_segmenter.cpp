@@ -60,9 +60,9 @@ YoloSegmenter::YoloSegmenter(const SegmentationOptions& options) : options_(opti
   net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   output_names_ = net_.getUnconnectedOutLayersNames();
 
-  // A dummy forward validates the output layout now rather than on the first frame.
-  const Outputs outs = forward(cv::Mat(input_size_, CV_8UC3, cv::Scalar::all(114)));
-  (void)outs;
+  // A dummy forward validates the output layout (and sets num_classes_) now rather
+  // than on the first frame; it also takes OpenCV's one-time allocations out of frame 0.
+  forward(cv::Mat(input_size_, CV_8UC3, cv::Scalar::all(114)));
 
   mask_class_.assign(static_cast<std::size_t>(num_classes_), !options_.masks_for_classes_only);
   for (int id : wanted)

@@ -21,6 +21,9 @@ class YoloSegmenter final : public Segmenter {
   // class names in options.classes (used by masks_for_classes_only).
   explicit YoloSegmenter(const SegmentationOptions& options);
 
+  // Detections above options.score_threshold after NMS, highest score first; boxes
+  // clipped to the frame; masks frame-size (empty for classes outside options.classes
+  // when masks_for_classes_only). Not thread-safe: one segmenter per thread.
   std::vector<Detection> segment(const cv::Mat& bgr) override;
 
   cv::Size input_size() const { return input_size_; }  // network input (width, height)
