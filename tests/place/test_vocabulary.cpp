@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "place_fixtures.h"
 #include "stillslam/core/error.h"
@@ -21,14 +22,14 @@ namespace fs = std::filesystem;
 class VocabularyTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    images_ = new std::vector<cv::Mat>(test::scene_images(12));
-    descriptors_ = new std::vector<cv::Mat>(test::descriptors_of(*images_));
-    vocabulary_ = new Vocabulary(Vocabulary::train(*descriptors_, test::small_options()));
+    images_ = std::make_unique<std::vector<cv::Mat>>(test::scene_images(12));
+    descriptors_ = std::make_unique<std::vector<cv::Mat>>(test::descriptors_of(*images_));
+    vocabulary_ = std::make_unique<Vocabulary>(Vocabulary::train(*descriptors_, test::small_options()));
   }
   static void TearDownTestSuite() {
-    delete images_;
-    delete descriptors_;
-    delete vocabulary_;
+    images_.reset();
+    descriptors_.reset();
+    vocabulary_.reset();
   }
   static const Vocabulary& voc() { return *vocabulary_; }
   static const std::vector<cv::Mat>& images() { return *images_; }
@@ -41,10 +42,10 @@ class VocabularyTest : public ::testing::Test {
   }
 
  private:
-  // gtest suite-level fixtures; owned by the suite between SetUp and TearDown.
-  static inline std::vector<cv::Mat>* images_ = nullptr;
-  static inline std::vector<cv::Mat>* descriptors_ = nullptr;
-  static inline Vocabulary* vocabulary_ = nullptr;
+  // gtest suite-level fixture: trained once in SetUpTestSuite, released in TearDownTestSuite.
+  static inline std::unique_ptr<std::vector<cv::Mat>> images_;
+  static inline std::unique_ptr<std::vector<cv::Mat>> descriptors_;
+  static inline std::unique_ptr<Vocabulary> vocabulary_;
 };
 
 TEST_F(VocabularyTest, TreeShape) {
@@ -193,6 +194,7 @@ void write_bytes(const fs::path& file, const std::string& bytes) {
 
 TEST_F(VocabularyTest, OtherFormatsAndDamagedFilesAreRejected) {
   expect_load_error(temp_file("does_not_exist.bin"), "cannot open");
+  expect_load_error(fs::temp_directory_path(), "not a file");
   const fs::path dbow = temp_file("ORBvoc.txt");
   write_bytes(dbow, "10 6  0 0\n0 0 252 188 188 242 169 109 85 143 187 171 0.0\n");
   expect_load_error(dbow, "DBoW2");

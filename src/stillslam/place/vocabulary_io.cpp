@@ -104,6 +104,10 @@ bool looks_like_dbow2_text(const std::vector<char>& bytes) {
 }
 
 std::vector<char> read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw Error("vocabulary path '" + path.string() + "' is not a file; pass the path of vocab/orb_vocabulary.bin "
+                "or one made with `stillslam vocab train`");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot open vocabulary file '" + path.string() + "' (missing or unreadable); pass the path of "
                        "vocab/orb_vocabulary.bin or one made with `stillslam vocab train`");
