@@ -274,7 +274,8 @@ TEST(Settings, SegmentationKeys) {
         "sub/a.yaml", base + "Segmentation.enabled: 0\nSegmentation.model: \"../models/m.onnx\"\n"
                              "Segmentation.classes: \"person, chair,dog\"\nSegmentation.scoreThreshold: 0.4\n"
                              "Segmentation.nmsIouThreshold: 0.5\nSegmentation.maskThreshold: 0.6\n"
-                             "Segmentation.maskDilation: 7\nSegmentation.threads: 2\n"));
+                             "Segmentation.maskDilation: 7\nSegmentation.threads: 2\n"
+                             "Segmentation.masksForClassesOnly: 1\nSegmentation.agnosticNms: 1\n"));
     EXPECT_FALSE(s.segmentation.enabled);
     EXPECT_EQ(std::filesystem::path(s.segmentation.model_path),
               (std::filesystem::absolute(dir.path()) / "models/m.onnx").lexically_normal());
@@ -284,6 +285,8 @@ TEST(Settings, SegmentationKeys) {
     EXPECT_FLOAT_EQ(s.segmentation.mask_threshold, 0.6f);
     EXPECT_EQ(s.segmentation.mask_dilation, 7);
     EXPECT_EQ(s.segmentation.threads, 2);
+    EXPECT_TRUE(s.segmentation.masks_for_classes_only);
+    EXPECT_TRUE(s.segmentation.agnostic_nms);
   }
   {
     const Settings s = load_settings(

@@ -7,9 +7,9 @@
 namespace stillslam {
 namespace {
 
-constexpr std::array<const char*, 8> kKnownKeys = {
-    "enabled", "model", "classes", "scoreThreshold", "nmsIouThreshold", "maskThreshold", "maskDilation",
-    "threads"};
+constexpr std::array<const char*, 10> kKnownKeys = {
+    "enabled",      "model",   "classes",             "scoreThreshold", "nmsIouThreshold",
+    "maskThreshold", "maskDilation", "threads", "masksForClassesOnly", "agnosticNms"};
 constexpr const char* kPrefix = "Segmentation.";
 
 std::string known_keys_list() {
@@ -95,6 +95,13 @@ float unit_interval(const SegmentationKeys& keys, const std::string& name, float
   return static_cast<float>(*v);
 }
 
+bool flag(const SegmentationKeys& keys, const std::string& name, bool fallback) {
+  const auto v = keys.number(name);
+  if (!v) return fallback;
+  if (*v != 0 && *v != 1) keys.fail(name, "must be 0 or 1");
+  return *v == 1;
+}
+
 int integer(const SegmentationKeys& keys, const std::string& name, int fallback, int min_value) {
   const auto v = keys.number(name);
   if (!v) return fallback;
@@ -118,10 +125,7 @@ void read_segmentation_section(const YamlReader& yaml, SegmentationOptions& opti
     yaml.fail("Segmentation", "must be a map of Segmentation settings or absent");
   }
 
-  if (const auto enabled = keys.number("enabled")) {
-    if (*enabled != 0 && *enabled != 1) keys.fail("enabled", "must be 0 or 1");
-    options.enabled = *enabled == 1;
-  }
+  options.enabled = flag(keys, "enabled", options.enabled);
   const cv::FileNode model = keys.get("model");
   if (!model.isNone()) {
     if (!model.isString() || trim(static_cast<std::string>(model)).empty()) {
@@ -139,6 +143,8 @@ void read_segmentation_section(const YamlReader& yaml, SegmentationOptions& opti
   options.mask_threshold = unit_interval(keys, "maskThreshold", options.mask_threshold);
   options.mask_dilation = integer(keys, "maskDilation", options.mask_dilation, 0);
   options.threads = integer(keys, "threads", options.threads, 1);
+  options.masks_for_classes_only = flag(keys, "masksForClassesOnly", options.masks_for_classes_only);
+  options.agnostic_nms = flag(keys, "agnosticNms", options.agnostic_nms);
 }
 
 }  // namespace stillslam
