@@ -113,8 +113,15 @@ TEST(PoseOptimizer, PointsBehindCameraAreOutliers) {
   behind.point_world = {0.1, 0.1, -2.0};
   behind.pixel = {300, 200};
   s.observations.push_back(behind);
+  // And one exactly in the camera plane (depth 0 cannot be projected).
+  PoseObservation at_zero = behind;
+  at_zero.point_world = {0.5, 0.1, 0.0};
+  s.observations.push_back(at_zero);
   const PoseOptimizationResult r = optimize_pose(cam, T_true, s.observations);
+  EXPECT_FALSE(r.inlier[r.inlier.size() - 2]);
   EXPECT_FALSE(r.inlier.back());
+  EXPECT_GE(r.num_inliers, 55);  // 60 noisy inliers, a few beyond the 95% chi2 gate
+  EXPECT_LE(r.num_inliers, 60);
   EXPECT_LT(testing::translation_error(r.T_cam_world, T_true), 0.01);
 }
 

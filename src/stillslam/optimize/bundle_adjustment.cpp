@@ -76,7 +76,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
       const BaObservation& o = observations[i];
       const ReprojectionCheck c = check_reprojection(k, from_pose_params(poses[o.keyframe].data()), xyz[o.point],
                                                      o.pixel, stereo[i] ? o.u_right : -1.0, o.inv_sigma2);
-      const bool in_front = c.depth > 0;
+      const bool in_front = c.in_front();
       result.observation_inlier[i] = in_front && c.chi2 <= (stereo[i] ? options.chi2_stereo : options.chi2_mono);
       if (result.observation_inlier[i] || (all_count && in_front)) cost += 0.5 * c.chi2;
     }
@@ -87,7 +87,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   std::vector<bool> active(n_obs);
   for (std::size_t i = 0; i < n_obs; ++i) {
     const BaObservation& o = observations[i];
-    active[i] = (from_pose_params(poses[o.keyframe].data()) * xyz[o.point]).z() > 0;
+    active[i] = (from_pose_params(poses[o.keyframe].data()) * xyz[o.point]).z() >= kMinCameraDepth;
   }
 
   ceres::HuberLoss huber_mono(std::sqrt(options.chi2_mono));

@@ -30,7 +30,7 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
       const PoseObservation& o = observations[i];
       const ReprojectionCheck c =
           check_reprojection(k, T, o.point_world, o.pixel, stereo[i] ? o.u_right : -1.0, o.inv_sigma2);
-      result.inlier[i] = c.depth > 0 && c.chi2 <= (stereo[i] ? options.chi2_stereo : options.chi2_mono);
+      result.inlier[i] = c.in_front() && c.chi2 <= (stereo[i] ? options.chi2_stereo : options.chi2_mono);
       inliers += result.inlier[i];
     }
     return inliers;
@@ -39,7 +39,7 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
   // Points behind the initial pose cannot be evaluated; everything else
   // starts as an inlier (the Huber loss bounds the first round's outliers).
   for (std::size_t i = 0; i < n; ++i) {
-    result.inlier[i] = (T_cam_world_init * observations[i].point_world).z() > 0;
+    result.inlier[i] = (T_cam_world_init * observations[i].point_world).z() >= kMinCameraDepth;
   }
 
   ceres::Solver::Options solver_options;

@@ -7,8 +7,6 @@
 namespace stillslam {
 namespace {
 
-constexpr double kMinDepth = 1e-6;
-
 // In place: r <- g(n) r and J <- g J + (g'(n) / n) r (r^T J) for n = |r| > delta,
 // with g(n) = sqrt(2 delta n - delta^2) / n (see header). J is N x 6 row-major.
 template <int N>
@@ -67,7 +65,7 @@ bool PoseResiduals::Evaluate(double const* const* parameters, double* residuals,
     const PoseObservation& o = observations_[i];
     const bool stereo = stereo_[i];
     const Eigen::Vector3d p = R * o.point_world + t;
-    if (p.z() < kMinDepth) return false;
+    if (p.z() < kMinCameraDepth) return false;
     const double s = std::sqrt(o.inv_sigma2);
     const double iz = 1.0 / p.z();
     const double u = k_.fx * p.x() * iz + k_.cx;

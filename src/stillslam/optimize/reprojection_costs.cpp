@@ -1,14 +1,13 @@
 #include "stillslam/optimize/reprojection_costs.h"
 
 #include <cmath>
+#include <limits>
 
 #include "stillslam/geometry/se3.h"
 #include "stillslam/optimize/se3_manifold.h"
 
 namespace stillslam {
 namespace {
-
-constexpr double kMinDepth = 1e-6;
 
 using RowMat27 = Eigen::Matrix<double, 2, 7, Eigen::RowMajor>;
 using RowMat37 = Eigen::Matrix<double, 3, 7, Eigen::RowMajor>;
@@ -63,7 +62,7 @@ MonoBaCost::MonoBaCost(const Intrinsics& k, const Eigen::Vector2d& pixel, double
 bool MonoBaCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   const Projected pr = transform(parameters[0], Eigen::Map<const Eigen::Vector3d>(parameters[1]));
   const Eigen::Vector3d& p = pr.p_cam;
-  if (p.z() < kMinDepth) return false;
+  if (p.z() < kMinCameraDepth) return false;
   const double iz = 1.0 / p.z();
   residuals[0] = sqrt_info_ * (k_.fx * p.x() * iz + k_.cx - pixel_.x());
   residuals[1] = sqrt_info_ * (k_.fy * p.y() * iz + k_.cy - pixel_.y());
@@ -84,7 +83,7 @@ StereoBaCost::StereoBaCost(const Intrinsics& k, const Eigen::Vector2d& pixel, do
 bool StereoBaCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   const Projected pr = transform(parameters[0], Eigen::Map<const Eigen::Vector3d>(parameters[1]));
   const Eigen::Vector3d& p = pr.p_cam;
-  if (p.z() < kMinDepth) return false;
+  if (p.z() < kMinCameraDepth) return false;
   const double iz = 1.0 / p.z();
   const double u = k_.fx * p.x() * iz + k_.cx;
   residuals[0] = sqrt_info_ * (u - observation_.x());
@@ -105,7 +104,7 @@ ReprojectionCheck check_reprojection(const Intrinsics& k, const Eigen::Isometry3
                                      const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
                                      double u_right, double inv_sigma2) {
   const Eigen::Vector3d p = T_cam_world * point_world;
-  if (p.z() < kMinDepth) return {0.0, p.z()};
+  if (p.z() < kMinCameraDepth) return {std::numeric_limits<double>::infinity(), p.z()};
   const double iz = 1.0 / p.z();
   const double u = k.fx * p.x() * iz + k.cx;
   const double eu = u - pixel.x(), ev = k.fy * p.y() * iz + k.cy - pixel.y();

@@ -12,6 +12,10 @@
 
 namespace stillslam {
 
+// Points closer than this (camera z, metres) cannot be evaluated: the costs
+// fail and the classifications below treat them as outliers.
+inline constexpr double kMinCameraDepth = 1e-6;
+
 // Intrinsics copied out of PinholeCamera so costs are self-contained.
 struct Intrinsics {
   double fx, fy, cx, cy, bf;
@@ -44,8 +48,9 @@ class StereoBaCost final : public ceres::SizedCostFunction<3, 7, 3> {
 // Whitened squared error (chi2) and camera-frame depth of one observation,
 // for outlier classification outside Ceres. u_right < 0: mono.
 struct ReprojectionCheck {
-  double chi2;
+  double chi2;   // +infinity when not in front of the camera
   double depth;
+  bool in_front() const { return depth >= kMinCameraDepth; }
 };
 ReprojectionCheck check_reprojection(const Intrinsics& k, const Eigen::Isometry3d& T_cam_world,
                                      const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
