@@ -51,6 +51,9 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
     p.b = Eigen::Vector2d(flip ? xa : xb, y + slant);
     p.speed = rng.uniform(0.8, 1.3);
     p.pause = rng.uniform(0.5, 3.0);
+    // Every other person stops in view for a while (talking, looking around).
+    p.stop_at = rng.uniform(0.35, 0.65);
+    p.stop_time = i % 2 == 1 || i >= 2 ? rng.uniform(1.5, 4.0) : 0.0;
     p.offset = rng.uniform(0, 8.0) + 3.0 * i;
     people_.push_back(p);
   }
@@ -77,16 +80,23 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
 V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
   if (p.still) return V(p.a.x(), p.a.y(), SceneLayout::kFloorZ);
   const double len = (p.b - p.a).norm();
-  const double walk = len / p.speed;
+  // One leg: walk to the stop point, stand there, walk on.
+  const double walk = len / p.speed + p.stop_time;
+  auto along = [&](double tau) {  // fraction of the path done after tau seconds of a leg
+    const double t_stop = p.stop_at * len / p.speed;
+    if (tau < t_stop) return tau * p.speed / len;
+    if (tau < t_stop + p.stop_time) return p.stop_at;
+    return std::min(1.0, (tau - p.stop_time) * p.speed / len);
+  };
   const double period = 2 * (walk + p.pause);
-  double tau = std::fmod(t + p.offset, period);
+  const double tau = std::fmod(t + p.offset, period);
   Eigen::Vector2d xy;
   if (tau < walk) {
-    xy = p.a + (p.b - p.a) * (tau / walk);
+    xy = p.a + (p.b - p.a) * along(tau);
   } else if (tau < walk + p.pause) {
     xy = p.b;
   } else if (tau < 2 * walk + p.pause) {
-    xy = p.b + (p.a - p.b) * ((tau - walk - p.pause) / walk);
+    xy = p.b + (p.a - p.b) * along(tau - walk - p.pause);
   } else {
     xy = p.a;
   }

@@ -22,6 +22,8 @@ struct PersonTrack {
   Eigen::Vector2d a, b;          // walking between these floor points (scene frame)
   double speed = 1.0;            // m/s
   double pause = 2.0;            // seconds out of view at each end
+  double stop_at = 0.5;          // fraction of the path where the person stands a while
+  double stop_time = 0.0;        // seconds standing there (0 = walks straight through)
   double offset = 0.0;           // seconds into the back-and-forth cycle at t = 0
   bool still = false;            // stands at `a`, only sways
   std::uint16_t id = 1;

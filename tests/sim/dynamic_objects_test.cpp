@@ -1,0 +1,68 @@
+// People and the moved box: continuous paths on the floor, human height,
+// facing the camera, dynamic ids.
+#include <gtest/gtest.h>
+
+#include "stillslam/sim/dynamic_objects.h"
+
+namespace stillslam::sim {
+namespace {
+
+TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
+  DynamicObjectsOptions o;
+  o.walking = 3;
+  o.still = 1;
+  o.duration = 20;
+  const std::vector<cv::Size> textures(4, cv::Size(640, 480));
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), {4, 5}, {{100, 300}, {120, 280}}, {6}, {{80, 150}},
+                           textures, 9);
+  ASSERT_EQ(dyn.people().size(), 4u);
+  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
+  std::vector<Eigen::Vector3d> last(4);
+  int standing_frames = 0;
+  for (int k = 0; k <= 600; ++k) {
+    const double t = k / 30.0;
+    const std::vector<Quad> quads = dyn.quads_at(t, camera);
+    ASSERT_EQ(quads.size(), 4u);
+    for (size_t i = 0; i < quads.size(); ++i) {
+      const Quad& q = quads[i];
+      EXPECT_TRUE(q.alpha_tested);
+      EXPECT_EQ(q.dynamic_id, dyn.people()[i].id);
+      const double h = -q.axis_v.z();
+      EXPECT_GT(h, dyn.people()[i].still ? 1.1 : 1.6);
+      EXPECT_LT(h, 1.9);
+      // Feet near the floor (bob is a few centimetres).
+      const Eigen::Vector3d foot = q.origin + q.axis_u / 2 + q.axis_v;
+      EXPECT_NEAR(foot.z(), SceneLayout::kFloorZ, 0.03);
+      // Seen from its front: axis_u x axis_v points away from the camera.
+      EXPECT_GT(q.axis_u.cross(q.axis_v).dot(foot - camera), 0);
+      if (k > 0) {
+        const double step = (foot - last[i]).norm();
+        EXPECT_LT(step, 1.4 / 30 + 0.01) << "person " << i << " jumps at t=" << t;
+        if (!dyn.people()[i].still && step < 0.003) ++standing_frames;
+      }
+      last[i] = foot;
+    }
+  }
+  EXPECT_GT(standing_frames, 60);  // pauses and stops in view happen
+}
+
+TEST(DynamicObjects, BoxIsDynamicOnlyWhileCarried) {
+  DynamicObjectsOptions o;
+  o.walking = 0;
+  o.moved_box = true;
+  o.duration = 10;  // picked up at 4 s, set down at 6.5 s
+  const std::vector<cv::Size> textures(2, cv::Size(64, 64));
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), {}, {}, {}, {}, textures, 1);
+  const auto before = dyn.quads_at(3.9, Eigen::Vector3d::Zero());
+  const auto during = dyn.quads_at(5.0, Eigen::Vector3d::Zero());
+  const auto after = dyn.quads_at(7.0, Eigen::Vector3d::Zero());
+  ASSERT_EQ(before.size(), 5u);
+  EXPECT_EQ(before[0].dynamic_id, 0);
+  EXPECT_NE(during[0].dynamic_id, 0);
+  EXPECT_EQ(after[0].dynamic_id, 0);
+  EXPECT_NEAR((after[0].origin - before[0].origin).norm(), std::hypot(0.8, 0.35), 1e-9);
+  EXPECT_GT(during[0].origin.z(), before[0].origin.z() + 0.1);  // lifted
+}
+
+}  // namespace
+}  // namespace stillslam::sim
