@@ -6,6 +6,7 @@ namespace stillslam {
 class KeyFrame;
 
 struct KeyFrameIdLess {
+  using is_transparent = void;  // lookups with const KeyFrame*
   bool operator()(const KeyFrame* a, const KeyFrame* b) const;
 };
 

@@ -23,7 +23,7 @@ int MapPoint::predict_level(double distance, const ScalePyramid& pyramid) const 
 }
 
 std::ptrdiff_t MapPoint::index_in(const KeyFrame* kf) const {
-  const auto it = observations_.find(const_cast<KeyFrame*>(kf));
+  const auto it = observations_.find(kf);
   return it == observations_.end() ? -1 : static_cast<std::ptrdiff_t>(it->second);
 }
 

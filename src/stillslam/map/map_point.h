@@ -49,7 +49,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // twice in num_observations() (as ORB-SLAM), mono ones once.
   const Observations& observations() const { return observations_; }
   int num_observations() const { return num_observations_; }
-  bool is_observed_by(const KeyFrame* kf) const { return observations_.count(const_cast<KeyFrame*>(kf)) > 0; }
+  bool is_observed_by(const KeyFrame* kf) const { return observations_.find(kf) != observations_.end(); }
   std::ptrdiff_t index_in(const KeyFrame* kf) const;
   void add_observation(KeyFrame* kf, std::size_t index);
   // Removes the observation; the point turns bad with <= 2 observations left.

@@ -187,11 +187,18 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
   return true;
 }
 
+// The last keyframe, or its closest ancestor if local mapping culled it.
+KeyFrame* Tracker::anchor_keyframe() const {
+  KeyFrame* kf = last_keyframe_.get();
+  while (kf != nullptr && kf->is_bad()) kf = kf->parent();
+  return kf;
+}
+
 bool Tracker::track_while_lost(Frame& frame, TrackingResult& result) {
   if (!last_frame_.has_pose()) return false;
   frame.set_pose(last_frame_.T_cam_world());
   frame.clear_map_points();
-  const LocalMap local = build_local_map(frame, last_keyframe_.get(), 20);
+  const LocalMap local = build_local_map(frame, anchor_keyframe(), 20);
   const int matches = search_points(frame, local.points, options_.lost_search_th);
   if (matches < options_.min_local_map_inliers) {
     result.reason = "lost: " + std::to_string(matches) + " matches in the last keyframes' local map";
@@ -207,7 +214,7 @@ bool Tracker::track_while_lost(Frame& frame, TrackingResult& result) {
 }
 
 bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
-  const LocalMap local = build_local_map(frame, last_keyframe_.get(), options_.max_local_keyframes);
+  const LocalMap local = build_local_map(frame, anchor_keyframe(), options_.max_local_keyframes);
   if (local.reference != nullptr) {
     frame.set_reference_keyframe(local.reference->shared_from_this());
   }

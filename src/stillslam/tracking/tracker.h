@@ -51,6 +51,7 @@ class Tracker {
   bool track_local_map(Frame& frame, TrackingResult& result);
   int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
   void update_last_frame();
+  KeyFrame* anchor_keyframe() const;
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   void create_keyframe(Frame& frame);
 
