@@ -65,6 +65,19 @@ TEST(KeyframeDatabase, QueryReturnsIdsBestFirstWithL1Scores) {
   PlaceQueryOptions common;
   common.min_common_words = 2;
   EXPECT_EQ(db.query(query, common).size(), 3u);
+  // Most shared words: 4 (keyframe 12); 0.6 * 4 = 2.4 keeps 12 and 10 (3 words).
+  PlaceQueryOptions ratio;
+  ratio.min_common_words_ratio = 0.6;
+  const auto r_ratio = db.query(query, ratio);
+  ASSERT_EQ(r_ratio.size(), 2u);
+  EXPECT_EQ(r_ratio[1].id, 10u);
+  // The ratio is relative to the best non-excluded candidate: without 12 the
+  // best shares 3 words, and 0.6 * 3 = 1.8 keeps 10 and 14 (2 words).
+  ratio.exclude = [](KeyframeId id) { return id == 12; };
+  const auto r_excl = db.query(query, ratio);
+  ASSERT_EQ(r_excl.size(), 2u);
+  EXPECT_EQ(r_excl[0].id, 10u);
+  EXPECT_EQ(r_excl[1].id, 14u);
 }
 
 TEST(KeyframeDatabase, EraseReplaceAndTies) {

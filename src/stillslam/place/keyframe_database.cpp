@@ -74,13 +74,17 @@ std::vector<PlaceCandidate> KeyframeDatabase::query(const BowVector& bow, const 
   }
   std::vector<PlaceCandidate> out;
   out.reserve(acc.size());
+  int most_common = 0;
   for (const auto& [id, a] : acc) {
-    if (a.common < options.min_common_words) continue;
-    const double score = std::clamp(0.5 * a.shared, 0.0, 1.0);
-    if (score < options.min_score) continue;
     if (options.exclude && options.exclude(id)) continue;
-    out.push_back({id, score, a.common});
+    out.push_back({id, std::clamp(0.5 * a.shared, 0.0, 1.0), a.common});
+    most_common = std::max(most_common, a.common);
   }
+  const double min_common = std::max(static_cast<double>(options.min_common_words),
+                                     options.min_common_words_ratio * static_cast<double>(most_common));
+  std::erase_if(out, [&](const PlaceCandidate& c) {
+    return static_cast<double>(c.common_words) < min_common || c.score < options.min_score;
+  });
   const auto better = [](const PlaceCandidate& a, const PlaceCandidate& b) {
     return a.score != b.score ? a.score > b.score : a.id < b.id;
   };

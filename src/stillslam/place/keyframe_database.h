@@ -18,6 +18,10 @@ struct PlaceQueryOptions {
   std::size_t max_results = 10;  // best candidates returned (0: all)
   double min_score = 0.0;        // drop candidates scoring below this
   int min_common_words = 1;      // drop candidates sharing fewer words with the query
+  // Also drop candidates sharing fewer than this fraction of the words the
+  // best-sharing (non-excluded) candidate shares; ORB-SLAM's relocalization and
+  // loop detection use 0.8 before scoring.
+  double min_common_words_ratio = 0.0;
   // Candidates for which this returns true are skipped (e.g. the query
   // keyframe itself and its covisible neighbours).
   std::function<bool(KeyframeId)> exclude;
