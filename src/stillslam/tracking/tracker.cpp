@@ -48,12 +48,18 @@ TrackingResult Tracker::track(Frame& frame) {
   if (ok) ok = track_local_map(frame, result);
 
   if (ok) {
-    if (state_ == TrackingState::Lost) {
+    const bool recovered = state_ == TrackingState::Lost;
+    if (recovered) {
       was_lost_ = true;
       last_lost_frame_id_ = frame.id();
     }
     state_ = TrackingState::Ok;
-    if (last_frame_.has_pose()) velocity_ = frame.T_cam_world() * last_frame_.T_cam_world().inverse();
+    // After a loss the last good frame may be far back in time: no velocity.
+    if (last_frame_.has_pose() && !recovered) {
+      velocity_ = frame.T_cam_world() * last_frame_.T_cam_world().inverse();
+    } else {
+      velocity_.reset();
+    }
     if (need_new_keyframe(frame, result.inliers)) {
       create_keyframe(frame);
       result.new_keyframe = true;
