@@ -53,7 +53,9 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--trajectory", o.trajectory,
                   "walking_xyz, halfsphere, rpy, static, or a TUM trajectory file")
       ->capture_default_str();
-  cmd->add_option("--frames", o.frames, "Number of frames (30 Hz)")->capture_default_str();
+  cmd->add_option("--frames", o.frames, "Number of frames at most (walking_xyz has 865 at 30 Hz)")
+      ->capture_default_str();
+  cmd->add_option("--fps", o.fps, "Frame rate")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--people", o.people, "Walking people")->capture_default_str();
   cmd->add_option("--still-people", o.still_people, "People who stay (almost) still: seated on a chair behind the desk")->capture_default_str();
   cmd->add_flag("--moved-object", o.moved_object, "A box on the desk is picked up and moved");
