@@ -5,8 +5,9 @@
 // slowly drifting world W(angle) * truth, its new points are placed in that
 // drifted world, and points are only re-observed by the next few keyframes,
 // so when the circle comes back the old points are not re-associated (that
-// is the loop closer's job). Keypoints are projections of the map points with
-// the drifted poses, so the map is consistent locally and wrong globally.
+// is the loop closer's job). Keypoints and depths are exact projections of the
+// true scene; the map (poses and points) drifts smoothly, so it is nearly
+// consistent locally (a few pixels over the reuse window) and wrong globally.
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
@@ -27,9 +28,9 @@ class LoopScene {
     double wall_radius = 5.0;
     double camera_radius = 1.0;
     double step_deg = 10.0;
-    int reuse_window = 3;          // a point is re-observed by this many later keyframes
-    double drift_yaw_deg = 6.0;    // per full turn
-    double drift_translation = 0.3;  // metres per full turn
+    int reuse_window = 6;          // a point is re-observed by this many later keyframes
+    double drift_yaw_deg = 8.0;    // per full turn
+    double drift_translation = 0.05;  // metres per full turn (sum of the per-step biases)
     std::uint32_t seed = 5;
   };
 
@@ -65,34 +66,37 @@ class LoopScene {
     T.translation() = options_.camera_radius * Eigen::Vector3d(std::sin(a), 0, std::cos(a));
     return T;
   }
-  // The drift of the world at keyframe i (identity at i = 0).
+  // The drift of the world at keyframe i (identity at i = 0): odometry with a
+  // constant bias E per step (in the camera frame, as visual odometry drifts),
+  // T_world_cam_drifted(i) = T_world_cam_drifted(i - 1) * T_true(i-1, i) * E.
   Eigen::Isometry3d drift(int i) const {
-    const double turns = angle_of(i) / (2 * M_PI);
-    Eigen::Isometry3d W = Eigen::Isometry3d::Identity();
-    W.linear() = Eigen::AngleAxisd(turns * options_.drift_yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    W.translation() = turns * options_.drift_translation * Eigen::Vector3d(1.0, 0.1, 0.5).normalized();
-    return W;
+    const double steps_per_turn = 360.0 / options_.step_deg;
+    Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
+    E.linear() = Eigen::AngleAxisd(options_.drift_yaw_deg / steps_per_turn * M_PI / 180.0, Eigen::Vector3d::UnitY())
+                     .toRotationMatrix();
+    E.translation() = options_.drift_translation / steps_per_turn * Eigen::Vector3d(1.0, 0.1, 0.5).normalized();
+    Eigen::Isometry3d T_drifted = true_T_world_cam(0);
+    for (int k = 1; k <= i; ++k) {
+      T_drifted = T_drifted * (true_T_world_cam(k - 1).inverse() * true_T_world_cam(k)) * E;
+    }
+    return T_drifted * true_T_world_cam(i).inverse();
   }
 
   // Adds keyframe i (call with i = 0, 1, 2, ... in order).
   KeyFramePtr add_keyframe(int i) {
     const Eigen::Isometry3d T_cw_true = true_T_world_cam(i).inverse();
     const Eigen::Isometry3d T_wc_drift = drift(i) * true_T_world_cam(i);
-    const Eigen::Isometry3d T_cw_drift = T_wc_drift.inverse();
     std::vector<cv::KeyPoint> kps;
     std::vector<float> u_right, depth;
     std::vector<MapPointPtr> slots;
     cv::Mat desc(0, 32, CV_8U);
     std::vector<std::pair<std::size_t, bool>> point_of_keypoint;  // scene index, new?
     for (std::size_t s = 0; s < points_.size(); ++s) {
-      const Eigen::Vector3d p_true = T_cw_true * points_[s];
-      if (p_true.z() <= 0.3 || !setup_->camera.in_image(setup_->camera.project(p_true))) continue;
-      auto it = live_.find(s);
-      const bool reuse = it != live_.end() && it->second.second + options_.reuse_window >= i;
-      const Eigen::Vector3d p_world = reuse ? it->second.first->position() : drift(i) * points_[s];
-      const Eigen::Vector3d p = T_cw_drift * p_world;
+      const Eigen::Vector3d p = T_cw_true * points_[s];  // measurements are exact
       const Eigen::Vector2d uv = setup_->camera.project(p);
       if (p.z() <= 0.3 || !setup_->camera.in_image(uv)) continue;
+      const auto it = live_.find(s);
+      const bool reuse = it != live_.end() && it->second.second + options_.reuse_window >= i;
       kps.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.f, 0.f, 1.f, 0);
       depth.push_back(static_cast<float>(p.z()));
       u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
@@ -100,7 +104,7 @@ class LoopScene {
       point_of_keypoint.emplace_back(s, !reuse);
     }
     Frame frame(static_cast<std::uint64_t>(i), 0.1 * i, setup_, kps, kps, desc, u_right, depth);
-    frame.set_pose(T_cw_drift);
+    frame.set_pose(T_wc_drift.inverse());
     KeyFramePtr kf = map_.create_keyframe(frame);
     for (std::size_t k = 0; k < point_of_keypoint.size(); ++k) {
       const auto [s, fresh] = point_of_keypoint[k];
@@ -134,7 +138,7 @@ class LoopScene {
     }
     VocabularyOptions o;
     o.branching = 8;
-    o.levels = 3;
+    o.levels = 4;  // about one word per scene point: unrelated views share few words
     o.seed = 1;
     return Vocabulary::train(images, o);
   }

@@ -1,0 +1,170 @@
+#include "stillslam/loop/loop_closer.h"
+
+#include "stillslam/core/stopwatch.h"
+#include "stillslam/loop/global_bundle_adjustment.h"
+
+namespace stillslam {
+
+LoopCloser::LoopCloser(Map& map, PlaceRecognizer& recognizer, LoopCloserOptions options)
+    : map_(map), recognizer_(recognizer), options_(std::move(options)), detector_(recognizer, options_.detector) {
+  if (options_.threaded) thread_ = std::thread([this] { run(); });
+}
+
+LoopCloser::~LoopCloser() { stop(); }
+
+void LoopCloser::submit(KeyFramePtr keyframe) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    queue_.push_back(std::move(keyframe));
+  }
+  queue_changed_.notify_all();
+}
+
+void LoopCloser::process_pending() {
+  if (options_.threaded) return;
+  for (;;) {
+    KeyFramePtr kf;
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      if (queue_.empty()) return;
+      kf = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    process(kf);
+  }
+}
+
+void LoopCloser::run() {
+  for (;;) {
+    KeyFramePtr kf;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      queue_changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping and drained
+      kf = std::move(queue_.front());
+      queue_.pop_front();
+      busy_ = true;
+    }
+    process(kf);
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      busy_ = false;
+    }
+    queue_changed_.notify_all();
+  }
+}
+
+void LoopCloser::flush() {
+  if (options_.threaded) {
+    std::unique_lock<std::mutex> lock(queue_mutex_);
+    queue_changed_.wait(lock, [&] { return queue_.empty() && !busy_; });
+  } else {
+    process_pending();
+  }
+  if (gba_thread_.joinable()) gba_thread_.join();
+}
+
+void LoopCloser::stop() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (stopping_) return;
+    stopping_ = true;
+  }
+  queue_changed_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  if (!options_.threaded) process_pending();
+  stop_global_bundle_adjustment();
+}
+
+void LoopCloser::process(const KeyFramePtr& keyframe) {
+  std::optional<ClosedLoop> closed;
+  {
+    std::unique_lock<std::mutex> map_lock(map_.update_mutex());
+    if (keyframe->is_bad()) return;
+    Stopwatch detection_time;
+    std::optional<LoopDetection> detection;
+    if (options_.detect_loops) detection = detector_.detect(map_, *keyframe);
+    recognizer_.add(*keyframe);
+    const double detection_ms = detection_time.elapsed_ms();
+    double correction_ms = 0;
+    if (detection) {
+      // A running global BA works on poses this correction replaces.
+      map_lock.unlock();
+      stop_global_bundle_adjustment();
+      if (options_.pause_local_mapping) options_.pause_local_mapping();
+      map_lock.lock();
+      Stopwatch correction_time;
+      closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
+                          correct_loop(map_, *detection, loop_edges_, options_.correction)};
+      detector_.loop_closed(keyframe->id());
+      correction_ms = correction_time.elapsed_ms();
+      map_lock.unlock();
+      if (options_.resume_local_mapping) options_.resume_local_mapping();
+    }
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.keyframes;
+    stats_.detection_ms += detection_ms;
+    stats_.correction_ms += correction_ms;
+    if (closed) {
+      ++stats_.loops_closed;
+      loops_.push_back(*closed);
+    }
+  }
+  if (closed && options_.run_global_bundle_adjustment) start_global_bundle_adjustment();
+}
+
+void LoopCloser::start_global_bundle_adjustment() {
+  stop_global_bundle_adjustment();
+  gba_abort_ = false;
+  gba_running_ = true;
+  if (options_.threaded) {
+    gba_thread_ = std::thread([this] { global_bundle_adjustment(); });
+  } else {
+    global_bundle_adjustment();
+  }
+}
+
+void LoopCloser::stop_global_bundle_adjustment() {
+  gba_abort_ = true;
+  if (gba_thread_.joinable()) gba_thread_.join();
+}
+
+void LoopCloser::global_bundle_adjustment() {
+  Stopwatch time;
+  GlobalBundleAdjustmentProblem problem;
+  {
+    std::lock_guard<std::mutex> lock(map_.update_mutex());
+    problem = snapshot_global_problem(map_);
+  }
+  BundleAdjustmentOptions options = options_.global_bundle_adjustment;
+  options.abort = &gba_abort_;
+  const BundleAdjustmentResult result = solve_global_problem(problem, options);
+  const bool aborted = result.aborted || gba_abort_.load();
+  if (!aborted) {
+    if (options_.pause_local_mapping) options_.pause_local_mapping();
+    {
+      std::lock_guard<std::mutex> lock(map_.update_mutex());
+      apply_global_result(map_, problem, result);
+    }
+    if (options_.resume_local_mapping) options_.resume_local_mapping();
+  }
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.global_bundle_adjustments;
+    if (aborted) ++stats_.global_bundle_adjustments_aborted;
+    stats_.global_bundle_adjustment_ms += time.elapsed_ms();
+  }
+  gba_running_ = false;
+}
+
+LoopCloserStats LoopCloser::stats() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+std::vector<ClosedLoop> LoopCloser::loops() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return loops_;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,164 @@
+#include "stillslam/loop/loop_correction.h"
+
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "stillslam/map/fuse.h"
+#include "stillslam/optimize/pose_graph.h"
+
+namespace stillslam {
+
+namespace {
+
+using PoseById = std::unordered_map<std::uint64_t, Eigen::Isometry3d>;
+
+// Essential graph over the active keyframes. Non-loop edges measure the
+// relative poses from before the correction (the drifted odometry the
+// optimization must bend), loop edges from after it.
+void optimize_essential_graph(Map& map, const KeyFrame& loop_kf, const PoseById& uncorrected,
+                              const std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess>& loop_links,
+                              const LoopEdges& loop_edges, const LoopCorrectionOptions& options,
+                              LoopCorrectionStats& stats) {
+  const std::vector<KeyFramePtr> keyframes = map.keyframes();
+  std::unordered_map<const KeyFrame*, std::size_t> node;
+  std::vector<Eigen::Isometry3d> T_world_node;
+  for (const auto& kf : keyframes) {
+    node.emplace(kf.get(), T_world_node.size());
+    T_world_node.push_back(kf->T_world_cam());
+  }
+  auto before = [&](const KeyFrame* kf) {
+    const auto it = uncorrected.find(kf->id());
+    return it != uncorrected.end() ? it->second : kf->T_world_cam();
+  };
+  std::vector<PoseGraphEdge> edges;
+  std::set<std::pair<std::size_t, std::size_t>> added;
+  auto add_edge = [&](const KeyFrame* a, const KeyFrame* b, bool corrected) {
+    const auto ia = node.find(a), ib = node.find(b);
+    if (ia == node.end() || ib == node.end() || a == b) return;
+    const auto key = std::minmax(ia->second, ib->second);
+    if (!added.insert(key).second) return;
+    PoseGraphEdge e;
+    e.from = ia->second;
+    e.to = ib->second;
+    e.T_from_to = corrected ? a->T_world_cam().inverse() * b->T_world_cam() : before(a).inverse() * before(b);
+    edges.push_back(e);
+  };
+  for (const auto& [kf, links] : loop_links) {
+    for (KeyFrame* other : links) add_edge(kf, other, true);
+  }
+  for (const auto& kf : keyframes) {
+    if (kf->parent() && !kf->parent()->is_bad()) add_edge(kf->parent(), kf.get(), false);
+    for (const auto& [a, b] : loop_edges) {
+      if (a != kf->id()) continue;
+      if (auto other = map.keyframe(b)) add_edge(kf.get(), other.get(), false);
+    }
+    for (KeyFrame* n : kf->covisibles_with_weight(options.strong_covisibility_weight)) {
+      if (!n->is_bad()) add_edge(kf.get(), n, false);
+    }
+  }
+  stats.graph_nodes = static_cast<int>(T_world_node.size());
+  stats.graph_edges = static_cast<int>(edges.size());
+  const std::vector<std::size_t> fixed{node.at(&loop_kf)};
+  const std::vector<Eigen::Isometry3d> optimized =
+      optimize_pose_graph(std::move(T_world_node), edges, fixed, options.pose_graph_iterations);
+  for (std::size_t k = 0; k < keyframes.size(); ++k) keyframes[k]->set_pose(optimized[k].inverse());
+}
+
+}  // namespace
+
+LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopEdges& loop_edges,
+                                 const LoopCorrectionOptions& options) {
+  LoopCorrectionStats stats;
+  KeyFrame& query = *detection.query;
+  const ScalePyramid& pyramid = query.setup().pyramid;
+  query.update_connections();
+
+  // 1. The query's neighbourhood moves rigidly with the query.
+  std::vector<KeyFrame*> connected{&query};
+  for (KeyFrame* k : query.covisibles()) {
+    if (!k->is_bad()) connected.push_back(k);
+  }
+  const Eigen::Isometry3d T_query_world_old = query.T_cam_world();
+  PoseById uncorrected;
+  std::unordered_map<MapPoint*, KeyFrame*> corrected_by;
+  for (KeyFrame* k : connected) {
+    const Eigen::Isometry3d T_world_k_old = k->T_world_cam();
+    const Eigen::Isometry3d T_world_k_new = detection.T_world_query_corrected * T_query_world_old * T_world_k_old;
+    uncorrected.emplace(k->id(), T_world_k_old);
+    for (const MapPointPtr& mp : k->map_points()) {
+      if (!mp || mp->is_bad() || !corrected_by.emplace(mp.get(), k).second) continue;
+      mp->set_position(T_world_k_new * (T_world_k_old.inverse() * mp->position()));
+    }
+    k->set_pose(T_world_k_new.inverse());
+  }
+  for (const auto& [mp, k] : corrected_by) {
+    mp->update_normal_and_depth(pyramid);
+  }
+  stats.corrected_keyframes = static_cast<int>(connected.size());
+
+  // Neighbours before fusion, to find the links the loop creates.
+  std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess> previous;
+  for (KeyFrame* k : connected) {
+    const auto c = k->covisibles();
+    previous[k] = std::set<KeyFrame*, KeyFrameIdLess>(c.begin(), c.end());
+  }
+
+  // 2. The query's loop matches replace its own points; then the loop points
+  // are fused into the whole corrected neighbourhood.
+  for (std::size_t i = 0; i < detection.matched_points.size(); ++i) {
+    const MapPointPtr& loop_point = detection.matched_points[i];
+    if (!loop_point || loop_point->is_bad()) continue;
+    const MapPointPtr current = query.map_point(i);
+    if (current == loop_point) continue;
+    if (current && !current->is_bad()) {
+      current->replace_with(loop_point);
+    } else {
+      loop_point->add_observation(&query, i);
+      query.set_map_point(i, loop_point);
+      loop_point->compute_distinctive_descriptor();
+    }
+    ++stats.fused_points;
+  }
+  for (KeyFrame* k : connected) stats.fused_points += fuse(*k, detection.loop_points, options.fuse_window);
+
+  // 3. New links = neighbours after fusion that were neither neighbours nor
+  // part of the corrected neighbourhood.
+  const std::unordered_set<const KeyFrame*> connected_set(connected.begin(), connected.end());
+  std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess> loop_links;
+  for (KeyFrame* k : connected) {
+    k->update_connections();
+    for (KeyFrame* n : k->covisibles()) {
+      if (previous[k].count(n) || connected_set.count(n)) continue;
+      loop_links[k].insert(n);
+      ++stats.new_loop_links;
+    }
+  }
+  loop_links[&query].insert(detection.loop.get());
+
+  // 4. Essential graph; every point follows its reference keyframe.
+  std::unordered_map<std::uint64_t, Eigen::Isometry3d> T_cam_world_before;
+  for (const auto& kf : map.all_keyframes()) T_cam_world_before.emplace(kf->id(), kf->T_cam_world_resolved());
+  optimize_essential_graph(map, *detection.loop, uncorrected, loop_links, loop_edges, options, stats);
+  std::unordered_map<std::uint64_t, const KeyFrame*> by_id;
+  for (const auto& kf : map.all_keyframes()) by_id.emplace(kf->id(), kf.get());
+  for (const MapPointPtr& mp : map.map_points()) {
+    if (mp->is_bad()) continue;
+    const auto c = corrected_by.find(mp.get());
+    const KeyFrame* ref = c != corrected_by.end() ? c->second : nullptr;
+    if (!ref) {
+      const auto it = by_id.find(mp->first_keyframe_id());
+      if (it == by_id.end()) continue;
+      ref = it->second;
+    }
+    const Eigen::Isometry3d T_world_ref_new = ref->T_cam_world_resolved().inverse();
+    mp->set_position(T_world_ref_new * (T_cam_world_before.at(ref->id()) * mp->position()));
+    mp->update_normal_and_depth(pyramid);
+  }
+  for (KeyFrame* k : connected) k->update_connections();
+  loop_edges.insert({query.id(), detection.loop->id()});
+  loop_edges.insert({detection.loop->id(), query.id()});
+  return stats;
+}
+
+}  // namespace stillslam
