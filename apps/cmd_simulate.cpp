@@ -61,6 +61,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("--moved-object", o.moved_object, "A box on the desk is picked up and moved");
   cmd->add_flag("--no-people", o.no_people, "No moving things: static reference of the same sequence");
   cmd->add_option("--seed", o.seed, "Random seed (scene, people, noise)")->capture_default_str();
+  cmd->add_flag("--overwrite", o.overwrite, "Replace a sequence already in --out");
   cmd->add_flag("--stereo", o.stereo, "Also write a rectified stereo pair (EuRoC layout)");
   cmd->add_option("--baseline", o.baseline, "Stereo baseline in metres")->capture_default_str();
   cmd->add_option("--noise", o.noise, "0 none, 1 realistic, 2 heavy")->capture_default_str()->check(

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
@@ -104,6 +105,13 @@ TEST(SequenceWriter, WritesTumLayoutThatTheReadersLoad) {
   double max_diff = 0;
   cv::minMaxLoc(diff, nullptr, &max_diff);
   EXPECT_LT(max_diff, 1.1e-4);
+
+  // Writing again into the same folder needs overwrite, and leaves no stale frames.
+  EXPECT_THROW(write_sequence(dir.path, o), Error);
+  o.overwrite = true;
+  o.frames = 4;
+  EXPECT_EQ(write_sequence(dir.path, o).frames, 4);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path / "rgb"), fs::directory_iterator{}), 4);
 }
 
 TEST(SequenceWriter, SameSeedSameBytes) {

@@ -54,8 +54,17 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
   Stopwatch total;
   const Simulator sim(options);
   const SimulationOptions& o = sim.options();
-  for (const char* sub : {"rgb", "depth", "masks"}) fs::create_directories(dir / sub);
   const fs::path mav = dir / "mav0";
+  if (fs::exists(dir / "rgb.txt") || fs::exists(mav / "cam0" / "data.csv")) {
+    if (!o.overwrite) {
+      throw Error(dir.string() + " already holds a sequence; choose another --out folder or pass --overwrite");
+    }
+    // Only what a previous run wrote: stale frames would otherwise linger.
+    for (const fs::path& sub : {dir / "rgb", dir / "depth", dir / "masks", mav / "cam0" / "data", mav / "cam1" / "data"}) {
+      fs::remove_all(sub);
+    }
+  }
+  for (const char* sub : {"rgb", "depth", "masks"}) fs::create_directories(dir / sub);
   if (o.stereo) {
     for (const char* cam : {"cam0", "cam1"}) fs::create_directories(mav / cam / "data");
     fs::create_directories(mav / "state_groundtruth_estimate0");

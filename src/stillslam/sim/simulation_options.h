@@ -34,6 +34,10 @@ struct SimulationOptions {
   // Folder with textures/ and cutouts/ (the repo's data/). Empty: found via
   // find_data_dir().
   std::filesystem::path data_dir;
+  // write_sequence: replace a sequence already in the output folder (its rgb/,
+  // depth/, masks/ and mav0/cam*/data/ files are deleted first). Without it an
+  // existing sequence there is an error.
+  bool overwrite = false;
   // Written into settings.yaml as Segmentation.model. Empty: <data_dir>/../models/yolo11n-seg_384x512.onnx.
   std::filesystem::path segmentation_model;
 };
