@@ -82,6 +82,25 @@ class LoopScene {
     return T_drifted * true_T_world_cam(i).inverse();
   }
 
+  // A frame with exact measurements from a true pose (no pose set): for
+  // relocalization queries.
+  Frame make_frame(std::uint64_t id, const Eigen::Isometry3d& T_world_cam_true) const {
+    const Eigen::Isometry3d T_cw = T_world_cam_true.inverse();
+    std::vector<cv::KeyPoint> kps;
+    std::vector<float> u_right, depth;
+    cv::Mat desc(0, 32, CV_8U);
+    for (std::size_t s = 0; s < points_.size(); ++s) {
+      const Eigen::Vector3d p = T_cw * points_[s];
+      const Eigen::Vector2d uv = setup_->camera.project(p);
+      if (p.z() <= 0.3 || !setup_->camera.in_image(uv)) continue;
+      kps.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.f, 0.f, 1.f, 0);
+      depth.push_back(static_cast<float>(p.z()));
+      u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
+      desc.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[s].data())).clone());
+    }
+    return Frame(id, 0.1 * static_cast<double>(id), setup_, kps, kps, desc, u_right, depth);
+  }
+
   // Adds keyframe i (call with i = 0, 1, 2, ... in order).
   KeyFramePtr add_keyframe(int i) {
     const Eigen::Isometry3d T_cw_true = true_T_world_cam(i).inverse();
