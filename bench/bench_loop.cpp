@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "../tests/loop/loop_scene.h"  // same scene as the tests
+#include "../tests/loop/real_place_data.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/loop/loop_closer.h"
 #include "stillslam/loop/loop_detector.h"
@@ -141,5 +142,49 @@ int main(int argc, char** argv) {
                 s.loops_closed, s.keyframes, s.detection_ms, s.detection_ms / std::max(1, s.keyframes),
                 s.correction_ms, s.global_bundle_adjustment_ms);
   }
+
+  // The committed vocabulary on real images (EuRoC micro clip, 1000 ORB
+  // features per image): describe every left image, index it, query with the
+  // right image.
+#ifdef STILLSLAM_BENCH_SHARED_DIR
+  const std::filesystem::path shared = STILLSLAM_BENCH_SHARED_DIR;
+#else
+  const std::filesystem::path shared = std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "shared";
+#endif
+  const auto voc_path = test::vocabulary_path(std::filesystem::path(__FILE__).parent_path().parent_path());
+  const auto mav0 = test::euroc_micro_mav0(shared);
+  if (!std::filesystem::exists(voc_path) || !std::filesystem::exists(mav0)) {
+    std::printf("real data: skipped (need %s and %s)\n", voc_path.c_str(), mav0.c_str());
+    return 0;
+  }
+  Timing load;
+  std::shared_ptr<const Vocabulary> real;
+  timed(load, [&] { real = std::make_shared<const Vocabulary>(Vocabulary::load(voc_path)); });
+  std::printf("real vocabulary: %zu words, k=%d, depth %d, load %.1f ms\n", real->size(), real->k(), real->depth(),
+              load.wall[0]);
+  const test::EurocStereo euroc = test::load_euroc_stereo(mav0);
+  const test::OrbKeyframeFactory factory(euroc.fx, euroc.left[0].cols / 2.0, euroc.left[0].rows / 2.0,
+                                         euroc.left[0].cols, euroc.left[0].rows);
+  PlaceRecognizer real_recognizer(real);
+  Map real_map;
+  Timing real_add, real_query;
+  for (std::size_t i = 0; i < euroc.left.size(); ++i) {
+    const KeyFramePtr kf = factory.keyframe(real_map, i, euroc.left[i]);
+    timed(real_add, [&] { real_recognizer.add(*kf); });
+  }
+  int top1 = 0;
+  for (std::size_t i = 0; i < euroc.right.size(); ++i) {
+    const Frame query = factory.frame(1000 + i, euroc.right[i]);
+    std::vector<PlaceCandidate> c;
+    timed(real_query, [&] { c = real_recognizer.relocalization_candidates(real_recognizer.describe(query.descriptors()).bow); });
+    // Consecutive 20 Hz frames are near duplicates: count a hit within 0.15 s.
+    if (!c.empty()) {
+      const auto best = static_cast<long>(c.front().id), own = static_cast<long>(real_map.keyframes()[i]->id());
+      if (std::abs(best - own) <= 3) ++top1;
+    }
+  }
+  row("real: describe + index keyframe (1000 ORB)", real_add);
+  row("real: describe + relocalization query", real_query, "DB of all left images");
+  std::printf("real: right image's best candidate within 3 frames of its own left keyframe: %d / %zu\n", top1, euroc.right.size());
   return 0;
 }

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "features/euroc_stereo.h"
+#include "../features/euroc_stereo.h"
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map.h"
