@@ -61,6 +61,7 @@ void LoopCloser::flush() {
   } else {
     process_pending();
   }
+  std::lock_guard<std::mutex> lock(gba_mutex_);
   if (gba_thread_.joinable()) gba_thread_.join();
 }
 
@@ -93,11 +94,14 @@ void LoopCloser::process(const KeyFramePtr& keyframe) {
       stop_global_bundle_adjustment();
       if (options_.pause_local_mapping) options_.pause_local_mapping();
       map_lock.lock();
-      Stopwatch correction_time;
-      closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
-                          correct_loop(map_, *detection, loop_edges_, options_.correction)};
-      detector_.loop_closed(keyframe->id());
-      correction_ms = correction_time.elapsed_ms();
+      // Local mapping may have culled either keyframe while the lock was free.
+      if (!detection->query->is_bad() && !detection->loop->is_bad()) {
+        Stopwatch correction_time;
+        closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
+                            correct_loop(map_, *detection, loop_edges_, options_.correction)};
+        detector_.loop_closed(keyframe->id());
+        correction_ms = correction_time.elapsed_ms();
+      }
       map_lock.unlock();
       if (options_.resume_local_mapping) options_.resume_local_mapping();
     }
@@ -114,7 +118,9 @@ void LoopCloser::process(const KeyFramePtr& keyframe) {
 }
 
 void LoopCloser::start_global_bundle_adjustment() {
-  stop_global_bundle_adjustment();
+  std::lock_guard<std::mutex> lock(gba_mutex_);
+  gba_abort_ = true;
+  if (gba_thread_.joinable()) gba_thread_.join();
   gba_abort_ = false;
   gba_running_ = true;
   if (options_.threaded) {
@@ -125,6 +131,7 @@ void LoopCloser::start_global_bundle_adjustment() {
 }
 
 void LoopCloser::stop_global_bundle_adjustment() {
+  std::lock_guard<std::mutex> lock(gba_mutex_);
   gba_abort_ = true;
   if (gba_thread_.joinable()) gba_thread_.join();
 }

@@ -103,6 +103,7 @@ class LoopCloser {
   LoopCloserStats stats_;
   std::vector<ClosedLoop> loops_;
 
+  std::mutex gba_mutex_;  // guards gba_thread_ (started by the worker, joined by flush/stop too)
   std::atomic<bool> gba_abort_{false};
   std::atomic<bool> gba_running_{false};
   std::thread gba_thread_;
