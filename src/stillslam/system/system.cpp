@@ -84,10 +84,8 @@ FrameStats System::process(const SensorFrame& input) {
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
   last_T_world_cam_.reset();
-  if (result.state == TrackingState::Ok && frame.has_pose() && frame.reference_keyframe()) {
-    const KeyFramePtr& ref = frame.reference_keyframe();
-    std::lock_guard<std::mutex> lock(map_->update_mutex());
-    records_.push_back({frame.timestamp(), ref, frame.T_cam_world() * ref->T_cam_world().inverse()});
+  if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
+    records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference});
     last_T_world_cam_ = frame.T_cam_world().inverse();
     stats.has_pose = true;
   }

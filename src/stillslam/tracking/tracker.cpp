@@ -34,6 +34,8 @@ TrackingResult Tracker::track(Frame& frame) {
     result.reason = "initialized";
     result.new_keyframe = true;
     result.inliers = frame.num_matches();
+    result.reference = reference_keyframe_;
+    result.T_cam_reference = Eigen::Isometry3d::Identity();
     return result;
   }
 
@@ -69,6 +71,8 @@ TrackingResult Tracker::track(Frame& frame) {
     if (!frame.reference_keyframe()) frame.set_reference_keyframe(reference_keyframe_);
     reference_keyframe_ = frame.reference_keyframe();
     T_last_ref_ = frame.T_cam_world() * reference_keyframe_->T_world_cam();
+    result.reference = reference_keyframe_;
+    result.T_cam_reference = T_last_ref_;
     last_frame_ = frame;
   } else {
     state_ = TrackingState::Lost;

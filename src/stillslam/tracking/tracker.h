@@ -30,6 +30,10 @@ struct TrackingResult {
   int matches = 0;     // matched map points before the final optimization
   int inliers = 0;     // map-point inliers after it
   bool new_keyframe = false;
+  // When Ok: the frame's reference keyframe and its pose relative to it, taken
+  // under the map lock (local BA may move the keyframe right after).
+  KeyFramePtr reference;
+  Eigen::Isometry3d T_cam_reference = Eigen::Isometry3d::Identity();
 };
 
 class Tracker {
