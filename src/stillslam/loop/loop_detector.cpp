@@ -8,37 +8,12 @@
 #include "stillslam/features/descriptor.h"
 #include "stillslam/map/matching_thresholds.h"
 #include "stillslam/optimize/pose_optimizer.h"
+#include "stillslam/map/keyframe_point_features.h"
 #include "stillslam/place/direct_index_matcher.h"
 
 namespace stillslam {
 
 namespace {
-
-// A keyframe's features that carry a live map point: their descriptors as one
-// matrix and the direct index renumbered to its rows.
-struct PointFeatures {
-  cv::Mat descriptors;
-  FeatureVector groups;
-  std::vector<std::size_t> slot;  // row -> keyframe index
-};
-
-PointFeatures point_features(const KeyFrame& kf, const FeatureVector& features) {
-  PointFeatures out;
-  out.descriptors.create(0, 32, CV_8U);
-  for (const FeatureGroup& g : features) {
-    FeatureGroup kept;
-    kept.node = g.node;
-    for (std::uint32_t i : g.features) {
-      const MapPointPtr& mp = kf.map_point(i);
-      if (!mp || mp->is_bad()) continue;
-      kept.features.push_back(static_cast<std::uint32_t>(out.slot.size()));
-      out.slot.push_back(i);
-      out.descriptors.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(kf.descriptor(i))));
-    }
-    if (!kept.features.empty()) out.groups.groups.push_back(std::move(kept));
-  }
-  return out;
-}
 
 // A keypoint in its camera frame: from its depth, else from its map point.
 std::optional<Eigen::Vector3d> camera_point(const KeyFrame& kf, std::size_t i) {
@@ -199,8 +174,8 @@ std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, con
   if (!candidate || candidate->is_bad()) return std::nullopt;
   const auto candidate_words = recognizer_.description(candidate->id());
   if (!candidate_words) return std::nullopt;
-  const PointFeatures q = point_features(query, query_words.features);
-  const PointFeatures c = point_features(*candidate, candidate_words->features);
+  const KeyframePointFeatures q = keyframe_point_features(query, query_words.features);
+  const KeyframePointFeatures c = keyframe_point_features(*candidate, candidate_words->features);
   if (q.slot.empty() || c.slot.empty()) return std::nullopt;
   const std::vector<cv::DMatch> matches =
       match_by_direct_index(q.descriptors, q.groups, c.descriptors, c.groups, options_.bow_matching);

@@ -3,39 +3,13 @@
 #include <unordered_set>
 
 #include "stillslam/map/projection_search.h"
+#include "stillslam/map/keyframe_point_features.h"
 #include "stillslam/place/direct_index_matcher.h"
 #include "stillslam/tracking/pose_refinement.h"
 
 namespace stillslam {
 
 namespace {
-
-// The keyframe's direct index restricted to features with a live map point,
-// with its descriptors gathered into one matrix (rows renumbered); `slot`
-// maps the rows back to keyframe indices.
-struct PointFeatures {
-  cv::Mat descriptors;
-  FeatureVector groups;
-  std::vector<std::size_t> slot;
-};
-
-PointFeatures point_features(const KeyFrame& kf, const FeatureVector& features) {
-  PointFeatures out;
-  out.descriptors.create(0, 32, CV_8U);
-  for (const FeatureGroup& g : features) {
-    FeatureGroup kept;
-    kept.node = g.node;
-    for (std::uint32_t i : g.features) {
-      const MapPointPtr& mp = kf.map_point(i);
-      if (!mp || mp->is_bad()) continue;
-      kept.features.push_back(static_cast<std::uint32_t>(out.slot.size()));
-      out.slot.push_back(i);
-      out.descriptors.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(kf.descriptor(i))));
-    }
-    if (!kept.features.empty()) out.groups.groups.push_back(std::move(kept));
-  }
-  return out;
-}
 
 // Projects the candidate's local map (its points and those of its best
 // covisibles) into the posed frame and matches the ones not matched yet.
@@ -85,7 +59,7 @@ RelocalizationResult Relocalizer::try_candidate(Frame& frame, const FeatureVecto
   result.keyframe = candidate.keyframe;
   frame.clear_map_points();
   const KeyFrame& kf = *candidate.keyframe;
-  const PointFeatures pf = point_features(kf, candidate.features);
+  const KeyframePointFeatures pf = keyframe_point_features(kf, candidate.features);
   if (static_cast<int>(pf.slot.size()) < options_.min_bow_matches) return result;
   const std::vector<cv::DMatch> matches =
       match_by_direct_index(frame.descriptors(), frame_features, pf.descriptors, pf.groups, options_.bow_matching);
