@@ -8,17 +8,11 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text_file.h"
 #include "stillslam/eval/svg_plot.h"
 
 namespace stillslam {
 namespace {
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw Error("cannot write plot " + path.string() + "; check that its folder exists and is writable");
-}
 
 // Indices k where the associated sequence has a hole before pose k (tracking
 // lost or poses missing): more than ten times the median step and 0.5 s.
@@ -101,8 +95,8 @@ std::string ape_over_time_svg(const EvaluationResult& result) {
 std::filesystem::path write_evaluation_plots(const std::filesystem::path& path, const EvaluationResult& result) {
   std::filesystem::path error_path = path;
   error_path.replace_filename(path.stem().string() + "_error" + (path.has_extension() ? path.extension().string() : ".svg"));
-  write_text(path, trajectory_view_svg(result));
-  write_text(error_path, ape_over_time_svg(result));
+  write_text_file(path, trajectory_view_svg(result));
+  write_text_file(error_path, ape_over_time_svg(result));
   return error_path;
 }
 

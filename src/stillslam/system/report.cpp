@@ -5,18 +5,9 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text_file.h"
 
 namespace stillslam {
-namespace {
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw Error("cannot write " + path.string() + ": check that the output folder is writable");
-}
-
-}  // namespace
 
 ReportFiles write_benchmark_report(const std::filesystem::path& dir, const std::vector<SequenceResult>& results,
                                    const BenchmarkOptions& options) {
@@ -34,8 +25,8 @@ ReportFiles write_benchmark_report(const std::filesystem::path& dir, const std::
     }
   }
   ReportFiles files{dir / "report.md", dir / "results.json"};
-  write_text(files.results, benchmark_to_json(results, options).dump(1) + "\n");
-  write_text(files.report, benchmark_markdown(results, options, plots));
+  write_text_file(files.results, benchmark_to_json(results, options).dump(1) + "\n");
+  write_text_file(files.report, benchmark_markdown(results, options, plots));
   return files;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text_file.h"
 #include "stillslam/eval/metrics.h"
 #include "stillslam/eval/svg_plot.h"
 #include "stillslam/system/report.h"
@@ -24,13 +25,6 @@ struct ModeCurve {
   EvaluationResult eval;
   std::vector<double> rpe_t, rpe_err;  // start time since t0, error
 };
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw Error("cannot write plot " + path.string() + ": check that the folder is writable");
-}
 
 // A hole in a stamped sequence (tracking lost): a step over 10x the median
 // step and over 0.5 s.
@@ -181,9 +175,9 @@ SequencePlots write_sequence_plots(const fs::path& dir, const SequenceResult& re
   plots.trajectories = result.input.name + "_trajectories.svg";
   plots.ape = result.input.name + "_ape.svg";
   plots.rpe = result.input.name + "_rpe.svg";
-  write_text(dir / plots.trajectories, trajectories_svg(result, curves));
-  write_text(dir / plots.ape, ape_svg(result, curves, t0));
-  write_text(dir / plots.rpe, rpe_svg(result, curves, t0));
+  write_text_file(dir / plots.trajectories, trajectories_svg(result, curves));
+  write_text_file(dir / plots.ape, ape_svg(result, curves, t0));
+  write_text_file(dir / plots.rpe, rpe_svg(result, curves, t0));
   return plots;
 }
 

@@ -1,0 +1,18 @@
+#pragma once
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "stillslam/core/error.h"
+
+namespace stillslam {
+
+// Writes `text` to `path`, replacing it; an Error names the file when it fails.
+inline void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.flush();
+  if (!out) throw Error("cannot write " + path.string() + ": check that its folder exists and is writable");
+}
+
+}  // namespace stillslam
