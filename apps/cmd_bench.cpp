@@ -11,13 +11,14 @@
 #include "stillslam/core/error.h"
 #include "stillslam/system/benchmark.h"
 #include "stillslam/system/report.h"
+#include "stillslam/system/system.h"
 
 namespace stillslam::apps {
 namespace {
 
 struct BenchArgs {
   std::vector<std::string> sequences;
-  std::string list, config, out = "bench_results";
+  std::string list, config, out = "bench_results", vocabulary;
   int runs = 5;
   std::size_t max_frames = 0;
   bool deterministic = false;
@@ -34,6 +35,7 @@ void run_bench(const BenchArgs& args) {
   BenchmarkOptions options;
   options.runs = args.runs;
   options.deterministic = args.deterministic;
+  options.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.output_dir = args.out;
   spdlog::info("bench: {} sequence(s), {} run(s) per mode, results in {}", inputs.size(), args.runs, args.out);
@@ -68,6 +70,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--runs", args->runs, "runs per mode (the median run by ATE is reported)")->capture_default_str();
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames of each sequence");
+  cmd->add_option("--vocabulary", args->vocabulary,
+                  "ORB vocabulary for relocalization and loop closing (default: vocab/orb_vocabulary.bin of the "
+                  "repository the binary was built in; 'none' disables both)");
   cmd->add_flag("--deterministic", args->deterministic,
                 "synchronous local mapping (runs repeat bit for bit, so --runs 1 suffices)");
   cmd->callback([args] { run_bench(*args); });

@@ -29,8 +29,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RunArgs {
-  std::string config, input, output, groundtruth;
-  bool no_segmentation = false, realtime = false, deterministic = false;
+  std::string config, input, output, groundtruth, vocabulary;
+  bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   std::size_t max_frames = 0;
 };
 
@@ -91,6 +91,8 @@ void run(const RunArgs& args) {
   RunOptions options;
   options.system.use_segmentation = !args.no_segmentation;
   options.system.deterministic = args.deterministic;
+  options.system.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
+  options.system.loop_closing = !args.no_loop_closing;
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
@@ -112,8 +114,10 @@ void run(const RunArgs& args) {
       std::fflush(stderr);
     }
   };
-  spdlog::info("run: {} frames of {} ({}), segmentation {}", total, args.input, to_string(dataset->sensor()),
-               options.system.use_segmentation && settings.segmentation.enabled ? "on" : "off");
+  spdlog::info("run: {} frames of {} ({}), segmentation {}, relocalization {}, loop closing {}", total, args.input,
+               to_string(dataset->sensor()), options.system.use_segmentation && settings.segmentation.enabled ? "on" : "off",
+               options.system.vocabulary_path.empty() ? "off" : "on",
+               options.system.vocabulary_path.empty() || !options.system.loop_closing ? "off" : "on");
   const RunResult result = run_dataset(settings, *dataset, options);
   if (tty) std::fprintf(stderr, "\n");
 
@@ -125,6 +129,8 @@ void run(const RunArgs& args) {
   stats["input"] = args.input;
   stats["segmentation"] = options.system.use_segmentation && settings.segmentation.enabled;
   stats["deterministic"] = args.deterministic;
+  stats["vocabulary"] = options.system.vocabulary_path.string();
+  stats["loop_closing"] = !options.system.vocabulary_path.empty() && options.system.loop_closing;
   stats["summary"] = to_json(summary);
   stats["summary"]["wall_seconds"] = result.wall_seconds;
   stats["summary"]["dropped_frames"] = result.dropped_frames;
@@ -133,6 +139,8 @@ void run(const RunArgs& args) {
   stats["summary"]["keyframes_in_map"] = result.keyframes.size();
   stats["summary"]["map_points"] = result.map_points;
   stats["local_mapping"] = to_json(result.mapper);
+  stats["loop_closing_stats"] = to_json(result.loop_closer);
+  stats["summary"]["relocalizations"] = result.relocalizations;
   if (result.error) stats["summary"]["error"] = *result.error;
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
@@ -140,7 +148,8 @@ void run(const RunArgs& args) {
 
   std::cout << "frames: " << summary.frames << ", tracked: " << summary.tracked << " ("
             << 100.0 * summary.tracked_ratio() << " %), keyframes: " << result.keyframes.size()
-            << ", map points: " << result.map_points << "\n";
+            << ", map points: " << result.map_points << ", relocalizations: " << result.relocalizations
+            << ", loops closed: " << result.loop_closer.loops_closed << "\n";
   std::cout << "time per frame [ms] mean " << summary.total_ms.mean << ", median " << summary.total_ms.median
             << ", p95 " << summary.total_ms.p95 << " (ORB extraction " << 100.0 * summary.extraction_share
             << " %; tracking only: median " << summary.tracking_ms.median << ")\n";
@@ -173,6 +182,11 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
   cmd->add_flag("--deterministic", args->deterministic,
                 "synchronous local mapping: same input, same trajectory bit for bit");
+  cmd->add_option("--vocabulary", args->vocabulary,
+                  "ORB vocabulary for relocalization and loop closing (default: vocab/orb_vocabulary.bin of the "
+                  "repository the binary was built in; 'none' disables both)");
+  cmd->add_flag("--no-loop-closing", args->no_loop_closing,
+                "no loop detection/correction (keyframes are still indexed for relocalization)");
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->callback([args] { run(*args); });

@@ -23,13 +23,17 @@ double keyframe_redundancy(const KeyFrame& kf, const KeyFrameCullingOptions& opt
   return points > 0 ? static_cast<double>(redundant) / points : 0.0;
 }
 
-int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options) {
+int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options,
+                             std::vector<std::uint64_t>* culled_ids) {
   int culled = 0;
   for (KeyFrame* other : kf.covisibles()) {
     if (other->id() == 0 || other->is_bad()) continue;
     if (keyframe_redundancy(*other, options) > options.redundancy) {
       map.erase_keyframe(map.keyframe(other->id()));
-      culled += other->is_bad() ? 1 : 0;
+      if (other->is_bad()) {
+        ++culled;
+        if (culled_ids) culled_ids->push_back(other->id());
+      }
     }
   }
   return culled;

@@ -3,6 +3,8 @@
 // keyframe of the new one is removed when more than 90% of its close map
 // points are seen by at least three other keyframes at the same or a finer
 // scale (pyramid level at most one above).
+#include <vector>
+
 #include "stillslam/map/map.h"
 
 namespace stillslam {
@@ -12,8 +14,10 @@ struct KeyFrameCullingOptions {
   int min_observers = 3;
 };
 
-// Caller holds the map's update mutex. Returns the number of culled keyframes.
-int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options = {});
+// Caller holds the map's update mutex. Returns the number of culled keyframes
+// and, when culled_ids is given, appends their ids to it.
+int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOptions& options = {},
+                             std::vector<std::uint64_t>* culled_ids = nullptr);
 
 // Fraction of a keyframe's close points that are redundant by the rule above
 // (exposed for tests and diagnostics).

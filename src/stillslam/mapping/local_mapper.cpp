@@ -62,6 +62,23 @@ void LocalMapper::stop() {
   process_pending();
 }
 
+void LocalMapper::pause() {
+  if (!options_.threaded) return;
+  std::unique_lock<std::mutex> lock(queue_mutex_);
+  paused_ = true;
+  abort_ba_ = true;
+  queue_changed_.wait(lock, [this] { return !busy_ || !thread_.joinable(); });
+}
+
+void LocalMapper::resume() {
+  if (!options_.threaded) return;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    paused_ = false;
+  }
+  queue_changed_.notify_all();
+}
+
 LocalMapperStats LocalMapper::stats() const {
   std::lock_guard<std::mutex> lock(stats_mutex_);
   return stats_;
@@ -73,7 +90,8 @@ void LocalMapper::run() {
     {
       std::unique_lock<std::mutex> lock(queue_mutex_);
       idle_ = true;
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      // While paused only a stop gets the worker going again (stop processes what is left).
+      queue_changed_.wait(lock, [this] { return stopping_ || (!paused_ && !queue_.empty()); });
       if (queue_.empty()) break;  // stopping and nothing left
       kf = queue_.front();
       queue_.pop_front();
@@ -129,14 +147,21 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       delta.bundle_adjustment_ms = ba.elapsed_ms();
     }
   }
+  std::vector<std::uint64_t> culled;
+  bool keyframe_alive = false;
   {
     std::lock_guard<std::mutex> lock(map_.update_mutex());
     kf->set_not_erase(false);
     if (options_.enable_keyframe_culling) {
-      delta.keyframes_culled = cull_redundant_keyframes(map_, *kf, options_.keyframe_culling);
+      delta.keyframes_culled = cull_redundant_keyframes(map_, *kf, options_.keyframe_culling, &culled);
     }
     map_.remove_bad_points();
+    keyframe_alive = !kf->is_bad();
   }
+  if (options_.on_keyframe_culled) {
+    for (std::uint64_t id : culled) options_.on_keyframe_culled(id);
+  }
+  if (options_.on_keyframe_processed && keyframe_alive) options_.on_keyframe_processed(kf);
   delta.total_ms = total.elapsed_ms();
   std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_.keyframes += 1;

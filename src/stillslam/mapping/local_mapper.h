@@ -11,6 +11,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -33,6 +34,11 @@ struct LocalMapperOptions {
   BundleAdjustmentOptions bundle_adjustment = default_bundle_adjustment();
   bool enable_bundle_adjustment = true;
   bool enable_keyframe_culling = true;
+  // Wired by System (both optional). Called outside the map lock: every
+  // finished keyframe (to loop closing) and the ids of culled keyframes (to
+  // drop them from place recognition).
+  std::function<void(KeyFramePtr)> on_keyframe_processed;
+  std::function<void(std::uint64_t)> on_keyframe_culled;
 
   static BundleAdjustmentOptions default_bundle_adjustment() {
     BundleAdjustmentOptions o;
@@ -73,6 +79,12 @@ class LocalMapper {
   void flush();
   // Finishes the keyframe in progress, drops nothing queued (processes it), joins.
   void stop();
+  // Loop correction: pause() lets the keyframe in progress finish (its BA is
+  // interrupted), then keeps the worker from starting another one and returns
+  // once it is idle; resume() lets it continue. Keyframes inserted meanwhile
+  // queue up. No-ops in synchronous mode (the owner's thread is the worker).
+  void pause();
+  void resume();
 
   LocalMapperStats stats() const;
 
@@ -88,6 +100,7 @@ class LocalMapper {
   std::deque<KeyFramePtr> queue_;
   bool busy_ = false;
   bool stopping_ = false;
+  bool paused_ = false;
   std::atomic<bool> idle_{true};
   std::atomic<bool> abort_ba_{false};
   std::vector<MapPointPtr> recent_points_;

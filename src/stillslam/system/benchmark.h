@@ -25,6 +25,9 @@ struct BenchmarkOptions {
   int runs = 5;  // per mode
   std::optional<std::size_t> max_frames;
   bool deterministic = false;  // synchronous local mapping (runs then repeat exactly)
+  // Relocalization and loop closing (SystemOptions::vocabulary_path); empty: off.
+  std::filesystem::path vocabulary_path;
+  bool loop_closing = true;
   // Each run's trajectory.txt / keyframes.txt go to
   // <output_dir>/<sequence>/seg_{on,off}/run_<k>/. Empty: not written.
   std::filesystem::path output_dir;

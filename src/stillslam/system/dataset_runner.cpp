@@ -55,6 +55,8 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
   out.trajectory = system.trajectory();
   out.keyframes = system.keyframe_trajectory();
   out.mapper = system.mapper_stats();
+  out.loop_closer = system.loop_closer_stats();
+  for (const FrameStats& f : out.frames) out.relocalizations += f.reason == "relocalized" ? 1 : 0;
   out.map_points = system.num_map_points();
   out.skipped_frames = dataset.skipped_frames();
   out.wall_seconds = wall.elapsed_ms() / 1000.0;

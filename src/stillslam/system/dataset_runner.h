@@ -29,6 +29,8 @@ struct RunResult {
   Trajectory trajectory;  // final estimate, every tracked frame
   Trajectory keyframes;
   LocalMapperStats mapper;
+  LoopCloserStats loop_closer;  // zeros without a vocabulary
+  int relocalizations = 0;      // frames recovered from Lost by relocalization
   std::size_t dropped_frames = 0;  // realtime mode
   std::size_t skipped_frames = 0;  // unreadable frames skipped by the dataset
   bool interrupted = false;

@@ -118,4 +118,14 @@ nlohmann::json to_json(const LocalMapperStats& s) {
           {"total_ms", s.total_ms}};
 }
 
+nlohmann::json to_json(const LoopCloserStats& s) {
+  return {{"keyframes", s.keyframes},
+          {"loops_closed", s.loops_closed},
+          {"global_bundle_adjustments", s.global_bundle_adjustments},
+          {"global_bundle_adjustments_aborted", s.global_bundle_adjustments_aborted},
+          {"detection_ms_total", s.detection_ms},
+          {"correction_ms_total", s.correction_ms},
+          {"global_bundle_adjustment_ms_total", s.global_bundle_adjustment_ms}};
+}
+
 }  // namespace stillslam

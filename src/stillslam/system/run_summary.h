@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "stillslam/loop/loop_closer.h"
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/system/frame_stats.h"
 
@@ -31,5 +32,6 @@ nlohmann::json to_json(const FrameStats& stats);
 nlohmann::json to_json(const TimingSummary& t);
 nlohmann::json to_json(const RunSummary& s);
 nlohmann::json to_json(const LocalMapperStats& s);
+nlohmann::json to_json(const LoopCloserStats& s);
 
 }  // namespace stillslam

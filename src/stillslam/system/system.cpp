@@ -1,5 +1,10 @@
 #include "stillslam/system/system.h"
 
+#include <unistd.h>
+
+#include <spdlog/spdlog.h>
+
+#include <array>
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/coco_classes.h"
@@ -32,6 +37,33 @@ std::shared_ptr<const CameraSetup> make_camera_setup(const Settings& settings, S
               "sequence and settings");
 }
 
+std::optional<std::filesystem::path> default_vocabulary_path(const std::filesystem::path& executable) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (fs::path dir = executable.parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    const fs::path candidate = dir / "vocab" / "orb_vocabulary.bin";
+    if (fs::is_regular_file(candidate, ec)) return candidate;
+    if (dir == dir.root_path()) break;
+  }
+  return std::nullopt;
+}
+
+std::filesystem::path current_executable() {
+  std::array<char, 4096> buffer{};
+  const ssize_t n = readlink("/proc/self/exe", buffer.data(), buffer.size() - 1);
+  return n > 0 ? std::filesystem::path(std::string(buffer.data(), static_cast<std::size_t>(n)))
+               : std::filesystem::path();
+}
+
+std::filesystem::path resolve_vocabulary_option(const std::string& option) {
+  if (option == "none") return {};
+  if (!option.empty()) return option;
+  if (auto found = default_vocabulary_path(current_executable())) return *found;
+  spdlog::warn("no vocab/orb_vocabulary.bin found above {}: relocalization and loop closing are off "
+               "(pass --vocabulary FILE)", current_executable().string());
+  return {};
+}
+
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
     : options_(std::move(options)) {
@@ -44,9 +76,33 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   }
   builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get());
   map_ = std::make_unique<Map>();
+  if (!options_.vocabulary_path.empty()) {
+    if (!std::filesystem::is_regular_file(options_.vocabulary_path)) {
+      throw Error("vocabulary " + options_.vocabulary_path.string() + " not found: pass --vocabulary " +
+                  "<repo>/vocab/orb_vocabulary.bin (committed in the repository)");
+    }
+    vocabulary_ = std::make_shared<const Vocabulary>(Vocabulary::load(options_.vocabulary_path));
+    recognizer_ = std::make_unique<PlaceRecognizer>(vocabulary_, options_.place_recognition);
+    relocalizer_ = Relocalizer(options_.relocalization);
+  }
   LocalMapperOptions mapper_options = options_.mapper;
   mapper_options.threaded = !options_.deterministic;
   if (options_.deterministic) mapper_options.bundle_adjustment.num_threads = 1;
+  if (recognizer_) {
+    // The loop closer exists before the mapper hands it keyframes; it reaches
+    // the mapper (pause/resume) only through mapper_, set right below.
+    LoopCloserOptions loop_options = options_.loop_closer;
+    loop_options.threaded = !options_.deterministic;
+    loop_options.detect_loops = loop_options.detect_loops && options_.loop_closing;
+    if (options_.deterministic) loop_options.global_bundle_adjustment.num_threads = 1;
+    loop_options.pause_local_mapping = [this] { mapper_->pause(); };
+    loop_options.resume_local_mapping = [this] { mapper_->resume(); };
+    loop_closer_ = std::make_unique<LoopCloser>(*map_, *recognizer_, loop_options);
+    LoopCloser* loop_closer = loop_closer_.get();
+    PlaceRecognizer* recognizer = recognizer_.get();
+    mapper_options.on_keyframe_processed = [loop_closer](KeyFramePtr kf) { loop_closer->submit(std::move(kf)); };
+    mapper_options.on_keyframe_culled = [recognizer](std::uint64_t id) { recognizer->erase(id); };
+  }
   mapper_ = std::make_unique<LocalMapper>(*map_, mapper_options);
   LocalMappingLink link;
   LocalMapper* mapper = mapper_.get();
@@ -54,6 +110,18 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   link.accepts_keyframes = [mapper] { return mapper->accepts_keyframes(); };
   link.queued_keyframes = [mapper] { return mapper->queued_keyframes(); };
   link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
+  if (recognizer_) {
+    link.relocalize = [this](Frame& frame) {  // called with the map lock held by the tracker
+      const BowDescription d = recognizer_->describe(frame.descriptors());
+      std::vector<RelocalizationCandidate> candidates;
+      for (const PlaceCandidate& c : recognizer_->relocalization_candidates(d.bow)) {
+        KeyFramePtr kf = map_->keyframe(c.id);
+        auto words = recognizer_->description(c.id);
+        if (kf && !kf->is_bad() && words) candidates.push_back({kf, words->features});
+      }
+      return relocalizer_.relocalize(frame, d.features, candidates).success;
+    };
+  }
   TrackerOptions tracker_options = options_.tracker;
   if (settings.fps > 0) tracker_options.max_frames_between_keyframes = static_cast<int>(settings.fps);
   tracker_ = std::make_unique<Tracker>(*map_, tracker_options, std::move(link));
@@ -62,6 +130,8 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
 System::~System() { shutdown(); }
 
 void System::shutdown() {
+  // Loop closing first: a correction in progress pauses and resumes the mapper.
+  if (loop_closer_) loop_closer_->stop();
   if (mapper_) mapper_->stop();
   if (segmentation_) segmentation_->stop();
 }
@@ -92,6 +162,7 @@ FrameStats System::process(const SensorFrame& input) {
   if (options_.deterministic) {
     Stopwatch mapping;
     mapper_->process_pending();
+    if (loop_closer_) loop_closer_->process_pending();
     stats.mapping_ms = mapping.elapsed_ms();
   }
   stats.total_ms = total.elapsed_ms();

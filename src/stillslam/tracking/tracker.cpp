@@ -51,6 +51,7 @@ TrackingResult Tracker::track(Frame& frame) {
 
   if (ok) {
     const bool recovered = state_ == TrackingState::Lost;
+    if (result.relocalized) result.reason = "relocalized";
     if (recovered) {
       was_lost_ = true;
       last_lost_frame_id_ = frame.id();
@@ -205,6 +206,10 @@ KeyFrame* Tracker::anchor_keyframe() const {
 }
 
 bool Tracker::track_while_lost(Frame& frame, TrackingResult& result) {
+  if (link_.relocalize && link_.relocalize(frame)) {
+    result.relocalized = true;
+    return true;
+  }
   if (!last_frame_.has_pose()) return false;
   frame.set_pose(last_frame_.T_cam_world());
   frame.clear_map_points();

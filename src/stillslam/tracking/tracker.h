@@ -2,8 +2,9 @@
 // The tracking state machine (ORB-SLAM style, RGB-D/stereo): initialization
 // from one frame with depth, constant-velocity motion model with projection
 // search, reference-keyframe fallback, local-map tracking, keyframe decision
-// and creation. On loss it keeps searching the last keyframe's local map with
-// a wide window (relocalization with a vocabulary is not available yet).
+// and creation. On loss it first tries relocalization (place recognition,
+// wired by System through the link), then searches the last keyframe's local
+// map with a wide window.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,6 +23,9 @@ struct LocalMappingLink {
   std::function<bool()> accepts_keyframes;      // idle
   std::function<std::size_t()> queued_keyframes;
   std::function<void()> interrupt_bundle_adjustment;
+  // Relocalization while lost, called with the map lock held: on success the
+  // frame holds its pose, inlier map-point matches and reference keyframe.
+  std::function<bool(Frame&)> relocalize;
 };
 
 struct TrackingResult {
@@ -30,6 +34,7 @@ struct TrackingResult {
   int matches = 0;     // matched map points before the final optimization
   int inliers = 0;     // map-point inliers after it
   bool new_keyframe = false;
+  bool relocalized = false;  // recovered from Lost by relocalization (reason "relocalized")
   // When Ok: the frame's reference keyframe and its pose relative to it, taken
   // under the map lock (local BA may move the keyframe right after).
   KeyFramePtr reference;
