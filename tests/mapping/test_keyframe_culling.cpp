@@ -14,10 +14,13 @@ TEST(KeyFrameCulling, KeyFramesSeenByThreeOthersAreCulledInOrder) {
   for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.01 * k)));
   // Every close point of kf1 is seen by 4 other keyframes at the same level.
   EXPECT_DOUBLE_EQ(keyframe_redundancy(*kfs[1]), 1.0);
-  const int culled = cull_redundant_keyframes(builder.map(), *kfs[4]);
+  std::vector<std::uint64_t> culled_ids;
+  const int culled = cull_redundant_keyframes(builder.map(), *kfs[4], {}, &culled_ids);
   // kf0 is never culled. Two of kf1..kf3 go (in covisibility order); then the
   // survivor's points have only kf0 and kf4 as other observers (< 3): it stays.
   EXPECT_EQ(culled, 2);
+  ASSERT_EQ(culled_ids.size(), 2u);
+  for (std::uint64_t id : culled_ids) EXPECT_TRUE(builder.map().keyframe(id) == nullptr) << id;
   EXPECT_FALSE(kfs[0]->is_bad());
   EXPECT_FALSE(kfs[4]->is_bad());
   int survivors = 0;

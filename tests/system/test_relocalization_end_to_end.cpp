@@ -1,7 +1,8 @@
 // End to end with the committed vocabulary: 15 black frames in the middle of a
 // synthetic sequence make tracking lose the map; when the images come back the
-// camera has moved on, and the tracker must relocalize (place recognition ->
-// Relocalizer) within a few frames and stay accurate afterwards.
+// camera has moved on (60 rendered frames are left out), and the tracker must
+// relocalize (place recognition -> Relocalizer) within 10 frames and stay
+// accurate afterwards.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,18 +16,27 @@ namespace {
 
 constexpr std::size_t kBlankBegin = 40;
 constexpr std::size_t kBlankEnd = 55;  // first frame with an image again
+// Frames of the rendered sequence left out after the blank (2 s of camera
+// motion): too far for the wide-window search of the last local map, so only
+// relocalization recovers (checked below without a vocabulary).
+constexpr std::size_t kSkippedFrames = 60;
 
 std::filesystem::path vocabulary_file() {
   return std::filesystem::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
 }
 
-test::SimSequence sequence_with_blank() {
-  test::SimSequence seq = test::render_sim_sequence("walking_xyz", 90, 320, 240, false);
+// Frames [kBlankBegin, kBlankEnd) are black, and the skip frames after them
+// are left out, so that the camera has moved on when the images come back.
+test::SimSequence sequence_with_blank(std::size_t skip) {
+  test::SimSequence seq = test::render_sim_sequence("walking_xyz", static_cast<int>(90 + skip), 320, 240, false);
   for (std::size_t i = kBlankBegin; i < kBlankEnd; ++i) {
     SensorFrame& f = seq.frames[i];
     f.gray.setTo(0);
     f.color.setTo(0);
   }
+  seq.frames.erase(seq.frames.begin() + kBlankEnd, seq.frames.begin() + kBlankEnd + skip);
+  seq.groundtruth.erase(seq.groundtruth.begin() + kBlankEnd, seq.groundtruth.begin() + kBlankEnd + skip);
+  for (std::size_t i = 0; i < seq.frames.size(); ++i) seq.frames[i].index = i;
   return seq;
 }
 
@@ -67,7 +77,7 @@ std::vector<std::pair<double, double>> errors_by_time(const test::SimSequence& s
 
 TEST(RelocalizationEndToEnd, RelocalizesAfterBlankFramesAndStaysAccurate) {
   if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
-  const test::SimSequence seq = sequence_with_blank();
+  const test::SimSequence seq = sequence_with_blank(kSkippedFrames);
   const Outcome out = run(seq, vocabulary_file());
 
   // Tracked before the blank, lost during it.
@@ -108,6 +118,15 @@ TEST(RelocalizationEndToEnd, RelocalizesAfterBlankFramesAndStaysAccurate) {
   const EvaluationResult ev = evaluate(seq.groundtruth, out.trajectory, EvaluationOptions{});
   std::cout << "ATE rmse " << ev.ape_stats.rmse << " m over " << ev.pairs << " poses\n";
   EXPECT_LT(ev.ape_stats.rmse, 0.01);
+
+  // Without a vocabulary only the wide-window search of the last local map is left.
+  const Outcome without = run(seq, {});
+  int recovered_without = 0;
+  for (std::size_t i = kBlankEnd; i < without.frames.size(); ++i) recovered_without += without.frames[i].has_pose ? 1 : 0;
+  std::cout << "without vocabulary: " << recovered_without << " of " << without.frames.size() - kBlankEnd
+            << " frames after the blank tracked\n";
+  EXPECT_EQ(recovered_without, 0) << "the camera must move further during the blank, else this test does not "
+                                     "need relocalization";
 }
 
 }  // namespace

@@ -1,0 +1,75 @@
+// LocalMapper's hooks for loop closing: pause()/resume() of the worker thread
+// and the keyframe-processed / keyframe-culled callbacks.
+#include <gtest/gtest.h>
+
+#include <mutex>
+
+#include "mapping/map_builder.h"
+#include "stillslam/mapping/local_mapper.h"
+
+namespace stillslam {
+namespace {
+
+struct Recorded {
+  std::mutex mutex;
+  std::vector<std::uint64_t> processed, culled;
+};
+
+LocalMapperOptions options_recording(Recorded& rec, bool threaded) {
+  LocalMapperOptions o;
+  o.threaded = threaded;
+  o.enable_bundle_adjustment = false;  // the hooks are under test, not BA
+  o.on_keyframe_processed = [&rec](KeyFramePtr kf) {
+    std::lock_guard<std::mutex> lock(rec.mutex);
+    rec.processed.push_back(kf->id());
+  };
+  o.on_keyframe_culled = [&rec](std::uint64_t id) {
+    std::lock_guard<std::mutex> lock(rec.mutex);
+    rec.culled.push_back(id);
+  };
+  return o;
+}
+
+TEST(LocalMapper, PausedWorkerLeavesKeyframesQueuedUntilResumed) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.01 * k)));
+  Recorded rec;
+  LocalMapper mapper(builder.map(), options_recording(rec, true));
+  mapper.pause();
+  mapper.insert_keyframe(kfs[4]);
+  EXPECT_EQ(mapper.queued_keyframes(), 1u);  // the paused worker does not take it
+  EXPECT_EQ(mapper.stats().keyframes, 0);
+  mapper.resume();
+  mapper.flush();
+  EXPECT_EQ(mapper.queued_keyframes(), 0u);
+  const LocalMapperStats stats = mapper.stats();
+  EXPECT_EQ(stats.keyframes, 1);
+  mapper.stop();
+  ASSERT_EQ(rec.processed.size(), 1u);
+  EXPECT_EQ(rec.processed[0], kfs[4]->id());
+  // Every culled keyframe is reported once, and is gone from the map.
+  EXPECT_EQ(static_cast<int>(rec.culled.size()), stats.keyframes_culled);
+  EXPECT_GT(stats.keyframes_culled, 0);
+  for (std::uint64_t id : rec.culled) EXPECT_TRUE(builder.map().keyframe(id) == nullptr) << id;
+}
+
+TEST(LocalMapper, PauseIsANoOpInSynchronousMode) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 3; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.01 * k)));
+  Recorded rec;
+  LocalMapper mapper(builder.map(), options_recording(rec, false));
+  mapper.pause();  // must not block: the owner's thread is the worker
+  mapper.insert_keyframe(kfs[2]);
+  mapper.process_pending();
+  mapper.resume();
+  EXPECT_EQ(mapper.stats().keyframes, 1);
+  ASSERT_EQ(rec.processed.size(), 1u);
+  EXPECT_EQ(rec.processed[0], kfs[2]->id());
+}
+
+}  // namespace
+}  // namespace stillslam
