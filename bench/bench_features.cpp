@@ -35,7 +35,7 @@ namespace {
 #ifdef STILLSLAM_BENCH_SHARED_DIR
 const fs::path kShared = STILLSLAM_BENCH_SHARED_DIR;
 #else
-const fs::path kShared = fs::path(__FILE__).parent_path().parent_path().parent_path() / "shared";
+const fs::path kShared = fs::path(STILLSLAM_SOURCE_DIR).parent_path() / "shared";
 #endif
 
 double median(std::vector<double> v) {

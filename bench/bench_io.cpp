@@ -38,7 +38,7 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   int runs = 3;
-  fs::path source = fs::path(__FILE__).parent_path().parent_path();  // this checkout
+  fs::path source = fs::path(STILLSLAM_SOURCE_DIR);  // this checkout
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
     if (arg == "--runs") runs = std::max(1, std::atoi(argv[i + 1]));

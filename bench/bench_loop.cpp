@@ -149,9 +149,9 @@ int main(int argc, char** argv) {
 #ifdef STILLSLAM_BENCH_SHARED_DIR
   const std::filesystem::path shared = STILLSLAM_BENCH_SHARED_DIR;
 #else
-  const std::filesystem::path shared = std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "shared";
+  const std::filesystem::path shared = std::filesystem::path(STILLSLAM_SOURCE_DIR).parent_path() / "shared";
 #endif
-  const auto voc_path = test::vocabulary_path(std::filesystem::path(__FILE__).parent_path().parent_path());
+  const auto voc_path = test::vocabulary_path(std::filesystem::path(STILLSLAM_SOURCE_DIR));
   const auto mav0 = test::euroc_micro_mav0(shared);
   if (!std::filesystem::exists(voc_path) || !std::filesystem::exists(mav0)) {
     std::printf("real data: skipped (need %s and %s)\n", voc_path.c_str(), mav0.c_str());

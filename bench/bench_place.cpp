@@ -30,7 +30,7 @@ using namespace stillslam;
 
 namespace {
 
-const fs::path kSource = fs::path(__FILE__).parent_path().parent_path();
+const fs::path kSource = fs::path(STILLSLAM_SOURCE_DIR);
 const fs::path kShared = kSource.parent_path() / "shared";
 
 double thread_cpu_ms() {

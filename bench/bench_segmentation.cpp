@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   int frames = 20;
   int coco = 30;
-  std::string src = fs::path(__FILE__).parent_path().parent_path().string();
+  std::string src = fs::path(STILLSLAM_SOURCE_DIR).string();
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--runs") runs = std::stoi(argv[i + 1]);

@@ -1,0 +1,118 @@
+// Accuracy of the dynamic masks on a generated sequence: every k-th frame of a
+// `stillslam simulate` folder (rgb/ + ground-truth masks/) is segmented by each
+// model, and the union of its person masks is compared with the exact mask.
+//   recall    = |predicted ∩ true| / |true|      (dynamic pixels caught)
+//   precision = |predicted ∩ true| / |predicted| (predicted pixels truly dynamic)
+// pooled over all pixels of the sampled frames, plus CPU time per frame.
+//
+//   build/bench/bench_mask_accuracy --sequence DIR [--step 10] [--model FILE ...]
+//
+// Without --model: models/*.onnx and ../shared/models/yolo-seg/yolo11n-seg_*.onnx.
+#include <time.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stillslam/core/error.h"
+#include "stillslam/segmentation/coco_classes.h"
+#include "stillslam/segmentation/dynamic_mask.h"
+#include "stillslam/segmentation/yolo_segmenter.h"
+
+namespace fs = std::filesystem;
+using namespace stillslam;
+
+namespace {
+
+double process_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+// rgb/<name>.png of associations.txt, every `step`-th line.
+std::vector<std::string> sampled_frames(const fs::path& seq, int step) {
+  std::ifstream in(seq / "associations.txt");
+  if (!in) throw Error("no associations.txt in " + seq.string() + " (expects a `stillslam simulate` folder)");
+  std::vector<std::string> names;
+  std::string line;
+  for (int i = 0; std::getline(in, line); ++i) {
+    if (line.empty() || line[0] == '#' || i % step != 0) continue;
+    std::istringstream ss(line);
+    double t;
+    std::string rgb;
+    ss >> t >> rgb;
+    names.push_back(fs::path(rgb).filename().string());
+  }
+  return names;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path seq;
+  int step = 10;
+  std::vector<std::string> models;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--sequence") seq = argv[i + 1];
+    else if (a == "--step") step = std::max(1, std::stoi(argv[i + 1]));
+    else if (a == "--model") models.push_back(argv[i + 1]);
+  }
+  if (seq.empty()) {
+    std::fprintf(stderr, "usage: bench_mask_accuracy --sequence DIR [--step 10] [--model FILE ...]\n");
+    return 1;
+  }
+  if (models.empty()) {
+    const fs::path repo = fs::path(STILLSLAM_SOURCE_DIR);
+    for (const fs::path& dir : {repo / "models", repo / ".." / "shared" / "models" / "yolo-seg"}) {
+      if (!fs::is_directory(dir)) continue;
+      for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string n = e.path().filename().string();
+        const bool listed = std::any_of(models.begin(), models.end(),
+                                        [&](const std::string& m) { return fs::path(m).filename() == n; });
+        if (e.path().extension() == ".onnx" && n.rfind("yolo11n-seg_", 0) == 0 &&
+            n.find("uint8") == std::string::npos && !listed)
+          models.push_back(e.path().string());
+      }
+    }
+    std::sort(models.begin(), models.end());
+  }
+  try {
+    const std::vector<std::string> frames = sampled_frames(seq, step);
+    std::printf("%zu frames of %s (every %d-th)\n", frames.size(), seq.string().c_str(), step);
+    std::printf("%-40s %8s %9s %8s %12s\n", "model", "recall", "precision", "IoU", "cpu ms/frame");
+    for (const std::string& model : models) {
+      SegmentationOptions o;
+      o.model_path = model;
+      o.threads = 1;
+      YoloSegmenter segmenter(o);
+      const std::vector<int> person = resolve_class_ids({"person"});
+      double inter = 0, truth = 0, predicted = 0, cpu = 0;
+      for (const std::string& name : frames) {
+        const cv::Mat bgr = cv::imread((seq / "rgb" / name).string(), cv::IMREAD_COLOR);
+        const cv::Mat gt = cv::imread((seq / "masks" / name).string(), cv::IMREAD_GRAYSCALE);
+        if (bgr.empty() || gt.empty()) throw Error("cannot read rgb/ or masks/ " + name + " in " + seq.string());
+        const double t0 = process_cpu_ms();
+        const cv::Mat1b pred = dynamic_mask(segmenter.segment(bgr), person, bgr.size(), 0);
+        cpu += process_cpu_ms() - t0;
+        const cv::Mat1b g = gt > 0;
+        inter += cv::countNonZero(pred & g);
+        truth += cv::countNonZero(g);
+        predicted += cv::countNonZero(pred);
+      }
+      std::printf("%-40s %8.3f %9.3f %8.3f %12.1f\n", fs::path(model).filename().string().c_str(),
+                  truth > 0 ? inter / truth : 0.0, predicted > 0 ? inter / predicted : 0.0,
+                  inter / std::max(1.0, truth + predicted - inter), cpu / std::max<std::size_t>(1, frames.size()));
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
