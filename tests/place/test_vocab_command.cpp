@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/run_stillslam.h"
 #include "place_fixtures.h"
 #include "stillslam/place/vocabulary.h"
 
@@ -17,26 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int status = -1;
-  std::string out;
-};
+using test::CommandRun;
 
-CommandRun run(const std::string& args) {
-  const std::string cmd = std::string(STILLSLAM_BINARY) + " " + args + " 2>&1";
-  CommandRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  r.status = pclose(pipe);
-  return r;
-}
-
-#define REQUIRE_BINARY()                                                                   \
-  if (!fs::exists(STILLSLAM_BINARY)) {                                                     \
-    GTEST_SKIP() << STILLSLAM_BINARY << " is not built (build the stillslam target first)"; \
-  }
+CommandRun run(const std::string& args) { return test::run_stillslam(args, true); }
 
 nlohmann::json last_json(const std::string& out) {
   const auto brace = out.find('{');
@@ -44,7 +28,7 @@ nlohmann::json last_json(const std::string& out) {
 }
 
 TEST(VocabCommand, TrainInfoAndQuery) {
-  REQUIRE_BINARY()
+  REQUIRE_STILLSLAM_BINARY()
   const fs::path dir = fs::temp_directory_path() / "stillslam_vocab_command_test";
   fs::remove_all(dir);
   fs::create_directories(dir / "images");
@@ -81,7 +65,7 @@ TEST(VocabCommand, TrainInfoAndQuery) {
 }
 
 TEST(VocabCommand, RejectsOtherFormatsWithTheFileName) {
-  REQUIRE_BINARY()
+  REQUIRE_STILLSLAM_BINARY()
   const fs::path dir = fs::temp_directory_path() / "stillslam_vocab_command_test_bad";
   fs::create_directories(dir);
   const fs::path dbow = dir / "ORBvoc.txt";

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/run_stillslam.h"
 #include "segmentation/test_data.h"
 
 namespace stillslam {
@@ -17,29 +18,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int status = -1;
-  std::string out;
-};
+using test::CommandRun;
 
-CommandRun run(const std::string& args) {
-  const std::string cmd = std::string(STILLSLAM_BINARY) + " " + args + " 2>/dev/null";
-  CommandRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  r.status = pclose(pipe);
-  return r;
-}
-
-#define REQUIRE_BINARY()                                                                         \
-  if (!test::exists(STILLSLAM_BINARY)) {                                                         \
-    GTEST_SKIP() << STILLSLAM_BINARY << " is not built (build the stillslam target first)";      \
-  }
+CommandRun run(const std::string& args) { return test::run_stillslam(args, false); }
 
 TEST(SegmentCommand, PrintsOneJsonLinePerDetectionAndWritesMasks) {
-  REQUIRE_BINARY()
+  REQUIRE_STILLSLAM_BINARY()
   const fs::path out = fs::temp_directory_path() / "stillslam_segment_command_test";
   fs::remove_all(out);
   const CommandRun r = run("segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
@@ -74,7 +58,7 @@ TEST(SegmentCommand, PrintsOneJsonLinePerDetectionAndWritesMasks) {
 }
 
 TEST(SegmentCommand, ClassFilterAndErrors) {
-  REQUIRE_BINARY()
+  REQUIRE_STILLSLAM_BINARY()
   const fs::path out = fs::temp_directory_path() / "stillslam_segment_command_test2";
   const std::string base = "segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
                            out.string() + " --threads 1";
