@@ -1,38 +1,17 @@
 // Covisibility graph and spanning tree on a constructed map.
 #include <gtest/gtest.h>
 
+#include "map/map_builder.h"
 #include "map/synthetic_scene.h"
 #include "stillslam/map/map.h"
 
 namespace stillslam {
 namespace {
 
-// Adds a keyframe at pose T observing scene points; every scene point keeps
-// one map point (created on first sight).
+// Keyframes of a synthetic scene with exact data association (MapBuilder).
 class GraphFixture : public ::testing::Test {
  protected:
-  KeyFramePtr add_keyframe(const Eigen::Isometry3d& T_cam_world) {
-    std::vector<std::size_t> ids;
-    Frame frame = scene_.make_frame(next_frame_++, T_cam_world, &ids);
-    frame.set_pose(T_cam_world);
-    KeyFramePtr kf = map_.create_keyframe(frame);
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      MapPointPtr& mp = point_of_scene_[ids[i]];
-      if (!mp) {
-        mp = map_.create_map_point(scene_.points()[ids[i]], kf.get());
-      }
-      mp->add_observation(kf.get(), i);
-      kf->set_map_point(i, mp);
-    }
-    for (const auto& mp : kf->map_points()) {
-      if (mp) {
-        mp->compute_distinctive_descriptor();
-        mp->update_normal_and_depth(scene_.setup()->pyramid);
-      }
-    }
-    kf->update_connections();
-    return kf;
-  }
+  KeyFramePtr add_keyframe(const Eigen::Isometry3d& T_cam_world) { return builder_.add_keyframe(T_cam_world); }
   int shared_points(const KeyFrame& a, const KeyFrame& b) {
     int n = 0;
     for (const auto& mp : a.map_points()) n += (mp && mp->is_observed_by(&b)) ? 1 : 0;
@@ -40,9 +19,8 @@ class GraphFixture : public ::testing::Test {
   }
 
   test::SyntheticScene scene_;
-  Map map_;
-  std::map<std::size_t, MapPointPtr> point_of_scene_;
-  std::uint64_t next_frame_ = 0;
+  test::MapBuilder builder_{scene_};
+  Map& map_ = builder_.map();
 };
 
 TEST_F(GraphFixture, CovisibilityWeightsAreSharedPointCounts) {

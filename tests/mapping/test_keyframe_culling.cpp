@@ -1,7 +1,7 @@
 // Redundant keyframe culling rule on constructed maps.
 #include <gtest/gtest.h>
 
-#include "mapping/map_builder.h"
+#include "map/map_builder.h"
 #include "stillslam/mapping/keyframe_culling.h"
 
 namespace stillslam {

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "mapping/map_builder.h"
+#include "map/map_builder.h"
 #include "stillslam/mapping/local_bundle_adjustment.h"
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/mapping/point_culling.h"

@@ -4,7 +4,7 @@
 
 #include <mutex>
 
-#include "mapping/map_builder.h"
+#include "map/map_builder.h"
 #include "stillslam/mapping/local_mapper.h"
 
 namespace stillslam {

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "mapping/map_builder.h"
+#include "map/map_builder.h"
 #include "stillslam/geometry/se3.h"
 #include "stillslam/place/vocabulary.h"
 #include "stillslam/tracking/relocalizer.h"

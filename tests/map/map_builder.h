@@ -1,6 +1,6 @@
 #pragma once
 // Builds keyframes of a SyntheticScene into a Map with exact data association
-// (one map point per scene point), for mapping tests.
+// (one map point per scene point), for map and mapping tests.
 #include <map>
 
 #include "map/synthetic_scene.h"
