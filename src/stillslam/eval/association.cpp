@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/timestamp_association.h"
 
 namespace stillslam {
 namespace {
@@ -26,39 +27,16 @@ std::vector<std::size_t> unique_sorted_last(const std::vector<double>& stamps) {
 
 std::vector<IndexPair> associate_greedy(const std::vector<double>& gt, const std::vector<double>& est,
                                         double max_dt, double offset) {
+  // associate.py sorts candidates by (|dt|, gt stamp, est stamp); with both
+  // lists unique and sorted by stamp, index order is stamp order, so the
+  // dataset readers' greedy rule gives the same pairs.
   const auto gt_ids = unique_sorted_last(gt);
   const auto est_ids = unique_sorted_last(est);
-  std::vector<double> est_shifted(est_ids.size());
+  std::vector<double> gt_sorted(gt_ids.size()), est_shifted(est_ids.size());
+  for (std::size_t k = 0; k < gt_ids.size(); ++k) gt_sorted[k] = gt[gt_ids[k]];
   for (std::size_t k = 0; k < est_ids.size(); ++k) est_shifted[k] = est[est_ids[k]] + offset;
-
-  // Candidates (|dt|, gt stamp, est stamp) exactly as associate.py sorts its tuples.
-  struct Candidate {
-    double dt;
-    double gt_stamp;
-    double est_stamp;
-    std::size_t gt_k;
-    std::size_t est_k;
-  };
-  std::vector<Candidate> candidates;
-  for (std::size_t g = 0; g < gt_ids.size(); ++g) {
-    const double a = gt[gt_ids[g]];
-    auto it = std::lower_bound(est_shifted.begin(), est_shifted.end(), a - max_dt);
-    for (; it != est_shifted.end() && *it <= a + max_dt; ++it) {
-      const std::size_t e = static_cast<std::size_t>(it - est_shifted.begin());
-      const double dt = std::abs(a - *it);
-      if (dt < max_dt) candidates.push_back({dt, a, est[est_ids[e]], g, e});
-    }
-  }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-    return std::tie(x.dt, x.gt_stamp, x.est_stamp) < std::tie(y.dt, y.gt_stamp, y.est_stamp);
-  });
-  std::vector<bool> gt_used(gt_ids.size(), false), est_used(est_ids.size(), false);
   std::vector<IndexPair> pairs;
-  for (const Candidate& c : candidates) {
-    if (gt_used[c.gt_k] || est_used[c.est_k]) continue;
-    gt_used[c.gt_k] = est_used[c.est_k] = true;
-    pairs.push_back({gt_ids[c.gt_k], est_ids[c.est_k]});
-  }
+  for (const auto& [g, e] : associate_timestamps(gt_sorted, est_shifted, max_dt)) pairs.push_back({gt_ids[g], est_ids[e]});
   std::sort(pairs.begin(), pairs.end(), [&](const IndexPair& x, const IndexPair& y) {
     return std::tie(gt[x.gt], est[x.est]) < std::tie(gt[y.gt], est[y.est]);
   });
