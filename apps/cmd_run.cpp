@@ -2,6 +2,9 @@
 // Writes DIR/trajectory_live.txt while running (survives a crash or kill),
 // and at the end DIR/trajectory.txt (final estimate, every tracked frame),
 // DIR/keyframes.txt and DIR/stats.json. Ctrl-C stops cleanly and writes all.
+// Atlas: trajectory.txt holds the frames of every map, each in its own map's
+// frame until that map is merged; DIR/trajectory_maps.txt is the same in TUM
+// with a 9th column, the map id (readers of TUM ignore it).
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -32,6 +35,7 @@ struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   std::size_t max_frames = 0;
+  int new_map_after_lost = -1;
 };
 
 // SIGINT/SIGTERM are blocked in every thread and picked up here with
@@ -93,6 +97,7 @@ void run(const RunArgs& args) {
   options.system.deterministic = args.deterministic;
   options.system.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
   options.system.loop_closing = !args.no_loop_closing;
+  options.system.new_map_after_lost_frames = args.new_map_after_lost;
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
@@ -123,6 +128,14 @@ void run(const RunArgs& args) {
 
   write_trajectory(out_dir / "trajectory.txt", result.trajectory);
   write_trajectory(out_dir / "keyframes.txt", result.keyframes);
+  {
+    std::ofstream maps(out_dir / "trajectory_maps.txt");
+    maps << "# t x y z qx qy qz qw map_id (each pose in its map's frame)\n";
+    for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
+      maps << format_trajectory_line(result.trajectory[i], TrajectoryFormat::Tum) << ' '
+           << result.trajectory_map_ids[i] << '\n';
+    }
+  }
   const RunSummary summary = summarize_run(result.frames);
   nlohmann::json stats;
   stats["config"] = args.config;
@@ -138,6 +151,15 @@ void run(const RunArgs& args) {
   stats["summary"]["interrupted"] = result.interrupted;
   stats["summary"]["keyframes_in_map"] = result.keyframes.size();
   stats["summary"]["map_points"] = result.map_points;
+  stats["summary"]["maps"] = result.maps;
+  stats["summary"]["new_maps"] = result.new_maps;
+  nlohmann::json merges = nlohmann::json::array();
+  for (const MapMergeStats& m : result.merges) {
+    merges.push_back({{"source_map", m.source_map}, {"target_map", m.target_map}, {"query_keyframe", m.query_id},
+                      {"recognized_keyframe", m.loop_id}, {"inliers", m.inliers}, {"fused_points", m.fused_points},
+                      {"moved_keyframes", m.moved_keyframes}, {"welding_keyframes", m.welding_keyframes}});
+  }
+  stats["map_merges"] = std::move(merges);
   stats["local_mapping"] = to_json(result.mapper);
   stats["loop_closing_stats"] = to_json(result.loop_closer);
   stats["summary"]["relocalizations"] = result.relocalizations;
@@ -187,6 +209,8 @@ void add_run_command(CLI::App& app) {
                   "repository the binary was built in; 'none' disables both)");
   cmd->add_flag("--no-loop-closing", args->no_loop_closing,
                 "no loop detection/correction (keyframes are still indexed for relocalization)");
+  cmd->add_option("--new-map-after-lost", args->new_map_after_lost,
+                  "start a new map after N frames lost (default: 1 s of frames with a vocabulary; 0: never)");
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->callback([args] { run(*args); });

@@ -23,7 +23,8 @@ KeyFrame::KeyFrame(std::uint64_t id, const Frame& frame)
       u_right_(frame.u_right()),
       depth_(frame.depth()),
       grid_(frame.grid()),
-      map_points_(frame.map_points()) {}
+      map_points_(frame.map_points()),
+      origin_(id == 0) {}
 
 Eigen::Isometry3d KeyFrame::T_cam_world_resolved() const {
   if (!bad_ || parent_ == nullptr) return T_cam_world_;
@@ -119,7 +120,7 @@ void KeyFrame::update_connections() {
   connections_ = std::move(counter);
   update_best_covisibles();
 
-  if (first_connection_ && id_ != 0) {
+  if (first_connection_ && !origin_) {
     parent_ = ordered_connections_.front();
     parent_->add_child(this);
     first_connection_ = false;
@@ -128,11 +129,12 @@ void KeyFrame::update_connections() {
 
 void KeyFrame::change_parent(KeyFrame* kf) {
   parent_ = kf;
+  first_connection_ = false;  // an explicit parent is not replaced by the first connection's
   kf->add_child(this);
 }
 
 void KeyFrame::set_bad() {
-  if (bad_ || id_ == 0 || not_erase_ || parent_ == nullptr) return;
+  if (bad_ || origin_ || not_erase_ || parent_ == nullptr) return;
   const auto keep_alive = weak_from_this().lock();
   for (const auto& [kf, w] : connections_) kf->erase_connection(this);
   for (std::size_t i = 0; i < map_points_.size(); ++i) {

@@ -81,9 +81,15 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   void erase_child(KeyFrame* kf) { children_.erase(kf); }
   void change_parent(KeyFrame* kf);
 
+  // The map's origin keyframe (its first): anchors the gauge, never culled,
+  // never gets a spanning-tree parent. Map::create_keyframe sets it; a merge
+  // clears it on the absorbed map's origin. Defaults to id == 0.
+  bool is_origin() const { return origin_; }
+  void set_origin(bool origin) { origin_ = origin; }
+
   bool is_bad() const { return bad_; }
   // Culling: removes the keyframe from the covisibility graph and its points'
-  // observations, re-parents its children. The first keyframe can't be culled.
+  // observations, re-parents its children. The origin keyframe can't be culled.
   void set_bad();
   // Set while local mapping uses the keyframe and it must not be culled.
   void set_not_erase(bool v) { not_erase_ = v; }
@@ -111,6 +117,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   Eigen::Isometry3d T_cam_parent_ = Eigen::Isometry3d::Identity();  // set when culled
   bool bad_ = false;
   bool not_erase_ = false;
+  bool origin_ = false;
 };
 
 using KeyFramePtr = std::shared_ptr<KeyFrame>;

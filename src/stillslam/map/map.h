@@ -6,6 +6,7 @@
 // Tracking holds it while it matches against the map and creates keyframes;
 // local mapping holds it for each structural step and releases it while
 // bundle adjustment optimizes on copies. The objects themselves carry no locks.
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -19,12 +20,27 @@ namespace stillslam {
 
 class Frame;
 
+// Keyframe and map-point id counters. The maps of an Atlas share one, so ids
+// are unique across maps (one keyframe database indexes them all). Atomic:
+// maps are locked independently.
+struct MapIdCounters {
+  std::atomic<std::uint64_t> next_keyframe{0};
+  std::atomic<std::uint64_t> next_point{0};
+};
+
 class Map {
  public:
+  // A stand-alone map (id 0, its own id counters).
+  Map();
+  // A map of an Atlas: `id` names it, `ids` is shared with the other maps.
+  Map(std::uint64_t id, std::shared_ptr<MapIdCounters> ids);
+
+  std::uint64_t id() const { return id_; }
+  const std::shared_ptr<MapIdCounters>& id_counters() const { return ids_; }
   std::mutex& update_mutex() const { return update_mutex_; }
 
   // Creates a keyframe from a posed frame and adds it (the caller still has to
-  // add observations / connections).
+  // add observations / connections). The map's first keyframe is its origin.
   KeyFramePtr create_keyframe(const Frame& frame);
   // Creates a point (not yet observed) and adds it.
   MapPointPtr create_map_point(const Eigen::Vector3d& position_world, KeyFrame* reference);
@@ -34,6 +50,15 @@ class Map {
   void erase_keyframe(const KeyFramePtr& kf);
   // Forgets points that turned bad (they stay alive while referenced).
   void remove_bad_points();
+
+  // Adds existing objects (map merging, loading). A culled keyframe only
+  // joins all_keyframes(). Ids must be unique (they come from the counters).
+  void add_keyframe(const KeyFramePtr& kf);
+  void add_map_point(const MapPointPtr& mp);
+  // Moves every keyframe (also culled ones) and point of `other` into this
+  // map; `other` is left empty. The caller holds both maps' mutexes.
+  void absorb(Map& other);
+  bool empty() const { return all_keyframes_.empty() && points_.empty(); }
 
   // Active keyframes / points, sorted by id.
   std::vector<KeyFramePtr> keyframes() const;
@@ -46,11 +71,11 @@ class Map {
 
  private:
   mutable std::mutex update_mutex_;
+  std::uint64_t id_ = 0;
+  std::shared_ptr<MapIdCounters> ids_;
   std::map<std::uint64_t, KeyFramePtr> keyframes_;
-  std::vector<KeyFramePtr> all_keyframes_;
+  std::vector<KeyFramePtr> all_keyframes_;  // by creation (id) order
   std::map<std::uint64_t, MapPointPtr> points_;
-  std::uint64_t next_keyframe_id_ = 0;
-  std::uint64_t next_point_id_ = 0;
 };
 
 }  // namespace stillslam

@@ -27,7 +27,7 @@ int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOption
                              std::vector<std::uint64_t>* culled_ids) {
   int culled = 0;
   for (KeyFrame* other : kf.covisibles()) {
-    if (other->id() == 0 || other->is_bad()) continue;
+    if (other->is_origin() || other->is_bad()) continue;
     if (keyframe_redundancy(*other, options) > options.redundancy) {
       map.erase_keyframe(map.keyframe(other->id()));
       if (other->is_bad()) {

@@ -14,7 +14,7 @@ LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
     BaKeyframe b;
     b.id = k->id();
     b.T_cam_world = k->T_cam_world();
-    b.fixed = fixed || k->id() == 0;  // the first keyframe anchors the gauge
+    b.fixed = fixed || k->is_origin();  // the map's first keyframe anchors the gauge
     problem.ba_keyframes.push_back(b);
   };
   add_keyframe(&kf, false);

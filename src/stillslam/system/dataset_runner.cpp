@@ -52,12 +52,18 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     }
   }
   system.shutdown();
-  out.trajectory = system.trajectory();
+  for (const MapPose& p : system.trajectory_with_maps()) {
+    out.trajectory.push_back(p.pose);
+    out.trajectory_map_ids.push_back(p.map_id);
+  }
   out.keyframes = system.keyframe_trajectory();
   out.mapper = system.mapper_stats();
   out.loop_closer = system.loop_closer_stats();
   for (const FrameStats& f : out.frames) out.relocalizations += f.reason == "relocalized" ? 1 : 0;
   out.map_points = system.num_map_points();
+  out.maps = system.num_maps();
+  out.new_maps = system.new_maps_started();
+  out.merges = system.merges();
   out.skipped_frames = dataset.skipped_frames();
   out.wall_seconds = wall.elapsed_ms() / 1000.0;
   return out;

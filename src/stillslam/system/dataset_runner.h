@@ -27,6 +27,7 @@ struct RunOptions {
 struct RunResult {
   std::vector<FrameStats> frames;
   Trajectory trajectory;  // final estimate, every tracked frame
+  std::vector<std::uint64_t> trajectory_map_ids;  // per trajectory pose: the map it is expressed in
   Trajectory keyframes;
   LocalMapperStats mapper;
   LoopCloserStats loop_closer;  // zeros without a vocabulary
@@ -37,6 +38,9 @@ struct RunResult {
   std::optional<std::string> error;  // the Error that ended the run early
   double wall_seconds = 0;
   std::size_t map_points = 0;
+  std::size_t maps = 1;           // at the end (after merges)
+  int new_maps = 0;               // started because tracking stayed lost
+  std::vector<MapMergeStats> merges;
 };
 
 // Construction errors (bad settings for this sensor, model) throw; errors

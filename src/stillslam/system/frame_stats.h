@@ -1,6 +1,7 @@
 #pragma once
 // What happened to one input frame (for stats.json and summaries).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "stillslam/tracking/frame_builder.h"
@@ -24,6 +25,9 @@ struct FrameStats {
   double total_cpu_ms = 0;     // CPU time of the calling thread for the whole frame
                                // (without the segmentation worker / right-image thread)
   bool has_pose = false;
+  std::uint64_t map_id = 0;  // the active map after tracking (atlas)
+  bool new_map = false;      // a new map starts with the next frame
+  bool merged = false;       // the active map was merged into an older one
 };
 
 }  // namespace stillslam

@@ -61,6 +61,7 @@ nlohmann::json to_json(const FrameStats& f) {
           {"state", to_string(f.state)},
           {"reason", f.reason},
           {"has_pose", f.has_pose},
+          {"map_id", f.map_id},
           {"keyframe", f.keyframe},
           {"features_before_filter", f.build.keypoints_before},
           {"features_after_filter", f.build.keypoints_after},

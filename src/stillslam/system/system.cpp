@@ -4,7 +4,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <array>
+#include <unordered_set>
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/coco_classes.h"
@@ -64,6 +66,33 @@ std::filesystem::path resolve_vocabulary_option(const std::string& option) {
   return {};
 }
 
+namespace {
+
+LocalMapperStats operator+(LocalMapperStats a, const LocalMapperStats& b) {
+  a.keyframes += b.keyframes;
+  a.points_created += b.points_created;
+  a.points_culled += b.points_culled;
+  a.keyframes_culled += b.keyframes_culled;
+  a.bundle_adjustments += b.bundle_adjustments;
+  a.bundle_adjustments_aborted += b.bundle_adjustments_aborted;
+  a.bundle_adjustment_ms += b.bundle_adjustment_ms;
+  a.total_ms += b.total_ms;
+  return a;
+}
+
+LoopCloserStats operator+(LoopCloserStats a, const LoopCloserStats& b) {
+  a.keyframes += b.keyframes;
+  a.loops_closed += b.loops_closed;
+  a.global_bundle_adjustments += b.global_bundle_adjustments;
+  a.global_bundle_adjustments_aborted += b.global_bundle_adjustments_aborted;
+  a.detection_ms += b.detection_ms;
+  a.correction_ms += b.correction_ms;
+  a.global_bundle_adjustment_ms += b.global_bundle_adjustment_ms;
+  return a;
+}
+
+}  // namespace
+
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
     : options_(std::move(options)) {
@@ -75,7 +104,7 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
                                                          settings.segmentation.mask_dilation);
   }
   builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get());
-  map_ = std::make_unique<Map>();
+  atlas_ = std::make_unique<Atlas>();
   if (!options_.vocabulary_path.empty()) {
     if (!std::filesystem::is_regular_file(options_.vocabulary_path)) {
       throw Error("vocabulary " + options_.vocabulary_path.string() + " not found: pass --vocabulary " +
@@ -84,38 +113,54 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
     vocabulary_ = std::make_shared<const Vocabulary>(Vocabulary::load(options_.vocabulary_path));
     recognizer_ = std::make_unique<PlaceRecognizer>(vocabulary_, options_.place_recognition);
     relocalizer_ = Relocalizer(options_.relocalization);
+    if (options_.map_merging) {
+      merge_detector_ = std::make_unique<MergeDetector>(*recognizer_, options_.merger.detector);
+    }
   }
-  LocalMapperOptions mapper_options = options_.mapper;
-  mapper_options.threaded = !options_.deterministic;
-  if (options_.deterministic) mapper_options.bundle_adjustment.num_threads = 1;
+  const int fps_frames = settings.fps > 0 ? static_cast<int>(settings.fps) : 30;
+  new_map_after_lost_frames_ = options_.new_map_after_lost_frames >= 0 ? options_.new_map_after_lost_frames
+                               : recognizer_                            ? fps_frames
+                                                                        : 0;
+
+  mapper_options_ = options_.mapper;
+  mapper_options_.threaded = !options_.deterministic;
+  if (options_.deterministic) mapper_options_.bundle_adjustment.num_threads = 1;
   if (recognizer_) {
-    // The loop closer exists before the mapper hands it keyframes; it reaches
-    // the mapper (pause/resume) only through mapper_, set right below.
-    LoopCloserOptions loop_options = options_.loop_closer;
-    loop_options.threaded = !options_.deterministic;
-    loop_options.detect_loops = loop_options.detect_loops && options_.loop_closing;
-    if (options_.deterministic) loop_options.global_bundle_adjustment.num_threads = 1;
-    loop_options.pause_local_mapping = [this] { mapper_->pause(); };
-    loop_options.resume_local_mapping = [this] { mapper_->resume(); };
-    loop_closer_ = std::make_unique<LoopCloser>(*map_, *recognizer_, loop_options);
-    LoopCloser* loop_closer = loop_closer_.get();
+    // The loop closer of the active map exists before the mapper hands it
+    // keyframes; it reaches the mapper (pause/resume) only through mapper_.
+    loop_options_ = options_.loop_closer;
+    loop_options_.threaded = !options_.deterministic;
+    loop_options_.detect_loops = loop_options_.detect_loops && options_.loop_closing;
+    if (options_.deterministic) loop_options_.global_bundle_adjustment.num_threads = 1;
+    loop_options_.pause_local_mapping = [this] { mapper_->pause(); };
+    loop_options_.resume_local_mapping = [this] { mapper_->resume(); };
     PlaceRecognizer* recognizer = recognizer_.get();
-    mapper_options.on_keyframe_processed = [loop_closer](KeyFramePtr kf) { loop_closer->submit(std::move(kf)); };
-    mapper_options.on_keyframe_culled = [recognizer](std::uint64_t id) { recognizer->erase(id); };
+    // loop_closer_ and mapper_ are replaced only while the mapper is stopped.
+    mapper_options_.on_keyframe_processed = [this](KeyFramePtr kf) {
+      if (merge_detector_) {
+        std::lock_guard<std::mutex> lock(finished_mutex_);
+        finished_keyframes_.push_back(kf);
+      }
+      loop_closer_->submit(std::move(kf));
+    };
+    mapper_options_.on_keyframe_culled = [recognizer](std::uint64_t id) { recognizer->erase(id); };
   }
-  mapper_ = std::make_unique<LocalMapper>(*map_, mapper_options);
+  start_map_threads(atlas_->active_map());
+
+  // The tracking thread is the only one that replaces mapper_.
   LocalMappingLink link;
-  LocalMapper* mapper = mapper_.get();
-  link.insert_keyframe = [mapper](KeyFramePtr kf) { mapper->insert_keyframe(std::move(kf)); };
-  link.accepts_keyframes = [mapper] { return mapper->accepts_keyframes(); };
-  link.queued_keyframes = [mapper] { return mapper->queued_keyframes(); };
-  link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
+  link.insert_keyframe = [this](KeyFramePtr kf) { mapper_->insert_keyframe(std::move(kf)); };
+  link.accepts_keyframes = [this] { return mapper_->accepts_keyframes(); };
+  link.queued_keyframes = [this] { return mapper_->queued_keyframes(); };
+  link.interrupt_bundle_adjustment = [this] { mapper_->interrupt_bundle_adjustment(); };
   if (recognizer_) {
-    link.relocalize = [this](Frame& frame) {  // called with the map lock held by the tracker
+    link.relocalize = [this](Frame& frame) {  // called with the active map's lock held by the tracker
+      const Map& map = tracker_->map();
       const BowDescription d = recognizer_->describe(frame.descriptors());
       std::vector<RelocalizationCandidate> candidates;
+      // Keyframes of other maps are not candidates: relocalization stays in the active map.
       for (const PlaceCandidate& c : recognizer_->relocalization_candidates(d.bow)) {
-        KeyFramePtr kf = map_->keyframe(c.id);
+        KeyFramePtr kf = map.keyframe(c.id);
         auto words = recognizer_->description(c.id);
         if (kf && !kf->is_bad() && words) candidates.push_back({kf, words->features});
       }
@@ -124,16 +169,99 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   }
   TrackerOptions tracker_options = options_.tracker;
   if (settings.fps > 0) tracker_options.max_frames_between_keyframes = static_cast<int>(settings.fps);
-  tracker_ = std::make_unique<Tracker>(*map_, tracker_options, std::move(link));
+  tracker_ = std::make_unique<Tracker>(atlas_->active_map(), tracker_options, std::move(link));
 }
 
 System::~System() { shutdown(); }
 
-void System::shutdown() {
-  // Loop closing first: a correction in progress pauses and resumes the mapper.
-  if (loop_closer_) loop_closer_->stop();
+void System::start_map_threads(Map& map) {
+  if (recognizer_) loop_closer_ = std::make_unique<LoopCloser>(map, *recognizer_, loop_options_);
+  mapper_ = std::make_unique<LocalMapper>(map, mapper_options_);
+}
+
+void System::stop_map_threads() {
+  // Local mapping first: the keyframes it still finishes reach loop closing,
+  // which indexes them before it stops (a correction in progress pausing or
+  // resuming the stopped mapper is harmless).
   if (mapper_) mapper_->stop();
+  if (loop_closer_) loop_closer_->stop();
+}
+
+void System::shutdown() {
+  stop_map_threads();
   if (segmentation_) segmentation_->stop();
+}
+
+void System::start_new_map() {
+  stop_map_threads();
+  stopped_mapper_stats_ = stopped_mapper_stats_ + mapper_->stats();
+  if (loop_closer_) stopped_loop_stats_ = stopped_loop_stats_ + loop_closer_->stats();
+  const std::uint64_t old_id = atlas_->active_map_id();
+  Map& map = atlas_->create_map();
+  spdlog::info("atlas: tracking lost for {} frames, map {} kept, new map {} starts", lost_frames_, old_id,
+               map.id());
+  {
+    std::lock_guard<std::mutex> lock(finished_mutex_);
+    finished_keyframes_.clear();
+  }
+  if (merge_detector_) merge_detector_->reset();
+  tracker_->start_new_map(map);
+  start_map_threads(map);
+  lost_frames_ = 0;
+  ++new_maps_started_;
+}
+
+void System::detect_and_merge() {
+  std::vector<KeyFramePtr> finished;
+  {
+    std::lock_guard<std::mutex> lock(finished_mutex_);
+    finished.swap(finished_keyframes_);
+  }
+  if (!merge_detector_ || atlas_->num_maps() < 2) return;
+  Map& active = atlas_->active_map();
+  for (const KeyFramePtr& kf : finished) {
+    for (Map* other : atlas_->maps()) {
+      if (other == &active) continue;
+      std::optional<LoopDetection> detection;
+      {
+        std::scoped_lock lock(active.update_mutex(), other->update_mutex());
+        if (kf->is_bad() || !active.keyframe(kf->id())) break;
+        detection = merge_detector_->detect(*other, *kf);
+      }
+      if (detection && merge_into(*other, *detection)) return;
+    }
+  }
+}
+
+bool System::merge_into(Map& target, const LoopDetection& detection) {
+  Map& source = atlas_->active_map();
+  stop_map_threads();
+  stopped_mapper_stats_ = stopped_mapper_stats_ + mapper_->stats();
+  if (loop_closer_) stopped_loop_stats_ = stopped_loop_stats_ + loop_closer_->stats();
+  std::optional<MapMergeStats> merged;
+  {
+    std::scoped_lock lock(source.update_mutex(), target.update_mutex());
+    // Local mapping may have culled or fused while it was running: check again.
+    if (auto checked = merge_detector_->verify(*detection.query, detection.loop)) {
+      Stopwatch time;
+      merged = merge_maps(target, source, *checked, options_.merger);
+      spdlog::info("atlas: map {} merged into map {} (keyframe {} recognized as {}, {} inliers, {} points fused, "
+                   "{:.0f} ms)", source.id(), target.id(), merged->query_id, merged->loop_id, merged->inliers,
+                   merged->fused_points, time.elapsed_ms());
+    }
+  }
+  if (merged) {
+    atlas_->set_active_map(target.id());
+    atlas_->remove_map(source.id());
+    tracker_->switch_map(target);
+    merges_.push_back(*merged);
+    merge_detector_->reset();
+    std::lock_guard<std::mutex> lock(finished_mutex_);
+    finished_keyframes_.clear();
+  }
+  // Both after a merge and after a failed re-check: continue in the active map.
+  start_map_threads(atlas_->active_map());
+  return merged.has_value();
 }
 
 FrameStats System::process(const SensorFrame& input) {
@@ -153,6 +281,7 @@ FrameStats System::process(const SensorFrame& input) {
   stats.matches = result.matches;
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
+  stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
     records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference});
@@ -165,37 +294,82 @@ FrameStats System::process(const SensorFrame& input) {
     if (loop_closer_) loop_closer_->process_pending();
     stats.mapping_ms = mapping.elapsed_ms();
   }
+  lost_frames_ = result.state == TrackingState::Lost ? lost_frames_ + 1 : 0;
+  if (new_map_after_lost_frames_ > 0 && lost_frames_ >= new_map_after_lost_frames_) {
+    start_new_map();
+    stats.new_map = true;
+  } else {
+    const std::size_t merges_before = merges_.size();
+    detect_and_merge();
+    stats.merged = merges_.size() > merges_before;
+  }
   stats.total_ms = total.elapsed_ms();
   stats.total_cpu_ms = total_cpu.elapsed_ms();
   return stats;
 }
 
-Trajectory System::trajectory() const {
-  std::lock_guard<std::mutex> lock(map_->update_mutex());
-  Trajectory out;
-  out.reserve(records_.size());
-  for (const FrameRecord& r : records_) {
-    const Eigen::Isometry3d T_cam_world = r.T_cam_ref * r.reference->T_cam_world_resolved();
-    out.push_back({r.timestamp, T_cam_world.inverse()});
+std::vector<MapPose> System::trajectory_with_maps() const {
+  std::vector<MapPose> out(records_.size());
+  std::vector<bool> done(records_.size(), false);
+  for (Map* map : atlas_->maps()) {
+    std::lock_guard<std::mutex> lock(map->update_mutex());
+    std::unordered_set<const KeyFrame*> members;
+    for (const KeyFramePtr& kf : map->all_keyframes()) members.insert(kf.get());
+    for (std::size_t i = 0; i < records_.size(); ++i) {
+      const FrameRecord& r = records_[i];
+      if (done[i] || !members.count(r.reference.get())) continue;
+      const Eigen::Isometry3d T_cam_world = r.T_cam_ref * r.reference->T_cam_world_resolved();
+      out[i] = {{r.timestamp, T_cam_world.inverse()}, map->id()};
+      done[i] = true;
+    }
   }
+  std::vector<MapPose> kept;
+  kept.reserve(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (done[i]) kept.push_back(out[i]);
+  }
+  return kept;
+}
+
+Trajectory System::trajectory() const {
+  Trajectory out;
+  for (const MapPose& p : trajectory_with_maps()) out.push_back(p.pose);
   return out;
 }
 
 Trajectory System::keyframe_trajectory() const {
-  std::lock_guard<std::mutex> lock(map_->update_mutex());
   Trajectory out;
-  for (const KeyFramePtr& kf : map_->keyframes()) out.push_back({kf->timestamp(), kf->T_world_cam()});
+  for (Map* map : atlas_->maps()) {
+    std::lock_guard<std::mutex> lock(map->update_mutex());
+    for (const KeyFramePtr& kf : map->keyframes()) out.push_back({kf->timestamp(), kf->T_world_cam()});
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.timestamp < b.timestamp; });
   return out;
 }
 
+LocalMapperStats System::mapper_stats() const { return stopped_mapper_stats_ + mapper_->stats(); }
+
+LoopCloserStats System::loop_closer_stats() const {
+  return loop_closer_ ? stopped_loop_stats_ + loop_closer_->stats() : stopped_loop_stats_;
+}
+
 std::size_t System::num_keyframes() const {
-  std::lock_guard<std::mutex> lock(map_->update_mutex());
-  return map_->num_keyframes();
+  std::size_t n = 0;
+  for (Map* map : atlas_->maps()) {
+    std::lock_guard<std::mutex> lock(map->update_mutex());
+    n += map->num_keyframes();
+  }
+  return n;
 }
 
 std::size_t System::num_map_points() const {
-  std::lock_guard<std::mutex> lock(map_->update_mutex());
-  return map_->num_map_points();
+  std::size_t n = 0;
+  for (Map* map : atlas_->maps()) {
+    std::lock_guard<std::mutex> lock(map->update_mutex());
+    n += map->num_map_points();
+  }
+  return n;
 }
 
 }  // namespace stillslam

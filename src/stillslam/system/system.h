@@ -1,13 +1,26 @@
 #pragma once
 // The SLAM system facade: builds the pipeline from Settings (camera setup,
-// segmentation worker, frame builder, map, tracker, local mapper thread and,
-// with a vocabulary, place recognition, relocalization and loop closing),
-// processes frames one at a time, and exports trajectories. Poses of frames
-// are stored relative to their reference keyframe and resolved on export,
-// so map corrections after a frame was tracked still apply to it.
+// segmentation worker, frame builder, atlas of maps, tracker, local mapper
+// thread and, with a vocabulary, place recognition, relocalization, loop
+// closing and map merging), processes frames one at a time, and exports
+// trajectories. Poses of frames are stored relative to their reference
+// keyframe and resolved on export, so map corrections after a frame was
+// tracked still apply to it.
+//
+// Atlas: when tracking stays lost for new_map_after_lost_frames frames
+// (relocalization keeps failing), a new map starts from the next frame with
+// enough depth; the old map is kept unchanged. Local mapping and loop closing
+// work on the active map only: they are stopped and started again on the new
+// (or, after a merge, the merged) map, so no thread ever touches an inactive
+// map. With a vocabulary, every keyframe local mapping finishes is also
+// looked for in the other maps (loop/merge_detector.h); a recognized place
+// merges the active map into the old one (loop/map_merger.h) and tracking
+// continues in the merged map. Frames keep the map of their reference
+// keyframe: until a merge their poses are in their own map's frame.
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -15,7 +28,10 @@
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/loop/loop_closer.h"
+#include "stillslam/loop/map_merger.h"
+#include "stillslam/loop/merge_detector.h"
 #include "stillslam/loop/place_recognizer.h"
+#include "stillslam/map/atlas.h"
 #include "stillslam/map/map.h"
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/segmentation/segmentation_worker.h"
@@ -43,6 +59,19 @@ struct SystemOptions {
   PlaceRecognizerOptions place_recognition;
   RelocalizerOptions relocalization;
   LoopCloserOptions loop_closer;  // threaded / pause callbacks are set by System
+  // Atlas: consecutive frames without a pose (lost, relocalization failing)
+  // after which a new map starts. -1: one second of frames (Camera.fps, else
+  // 30) when a vocabulary is loaded, never without one; 0: never.
+  int new_map_after_lost_frames = -1;
+  // With a vocabulary: merge maps when a place is recognized across them.
+  bool map_merging = true;
+  MapMergerOptions merger;
+};
+
+// A frame's pose with the id of the map it is expressed in.
+struct MapPose {
+  StampedPose pose;
+  std::uint64_t map_id = 0;
 };
 
 // vocab/orb_vocabulary.bin of the repository the executable was built in:
@@ -73,14 +102,27 @@ class System {
   // Stops loop closing, then local mapping (finishing queued keyframes). Idempotent.
   void shutdown();
 
-  Trajectory trajectory() const;           // every tracked frame
-  Trajectory keyframe_trajectory() const;  // active keyframes
-  LocalMapperStats mapper_stats() const { return mapper_->stats(); }
+  // Every tracked frame, each in the frame of the map holding its reference
+  // keyframe (maps merged into another are in that map's frame).
+  Trajectory trajectory() const;
+  std::vector<MapPose> trajectory_with_maps() const;
+  Trajectory keyframe_trajectory() const;  // active keyframes of all maps
+  // Totals over every map's local mapper / loop closer.
+  LocalMapperStats mapper_stats() const;
   // Zero when there is no vocabulary.
-  LoopCloserStats loop_closer_stats() const { return loop_closer_ ? loop_closer_->stats() : LoopCloserStats{}; }
+  LoopCloserStats loop_closer_stats() const;
   bool relocalization_enabled() const { return recognizer_ != nullptr; }
-  std::size_t num_keyframes() const;
+  std::size_t num_keyframes() const;  // all maps
   std::size_t num_map_points() const;
+
+  // The maps (e.g. to save them all). Read map contents under each map's
+  // update_mutex(); the list of maps changes only inside process().
+  const Atlas& atlas() const { return *atlas_; }
+  std::size_t num_maps() const { return atlas_->num_maps(); }
+  std::uint64_t active_map_id() const { return atlas_->active_map_id(); }
+  // Maps started because tracking stayed lost, and merges done.
+  int new_maps_started() const { return new_maps_started_; }
+  const std::vector<MapMergeStats>& merges() const { return merges_; }
   const CameraSetup& camera_setup() const { return *setup_; }
   bool segmentation_enabled() const { return segmentation_ != nullptr; }
 
@@ -91,22 +133,46 @@ class System {
     Eigen::Isometry3d T_cam_ref;
   };
 
+  // Local mapping and loop closing for the active map.
+  void start_map_threads(Map& map);
+  // Stops them (local mapping first, so every keyframe it finishes still
+  // reaches loop closing and the place-recognition index); keeps their stats.
+  void stop_map_threads();
+  void start_new_map();
+  // Looks for the keyframes local mapping finished in the other maps; merges
+  // on a recognized place.
+  void detect_and_merge();
+  bool merge_into(Map& target, const LoopDetection& detection);
+
   SystemOptions options_;
   std::shared_ptr<const CameraSetup> setup_;
   std::unique_ptr<SegmentationWorker> segmentation_;
   std::unique_ptr<FrameBuilder> builder_;
-  std::unique_ptr<Map> map_;
+  std::unique_ptr<Atlas> atlas_;
   std::shared_ptr<const Vocabulary> vocabulary_;
   std::unique_ptr<PlaceRecognizer> recognizer_;
   Relocalizer relocalizer_;
-  // Declared after the mapper so that it is destroyed first (shutdown() also
-  // stops it first): it pauses the mapper during corrections.
+  std::unique_ptr<MergeDetector> merge_detector_;
+  LocalMapperOptions mapper_options_;
+  LoopCloserOptions loop_options_;
+  // Declared after the mapper so that it is destroyed first: it pauses the
+  // mapper during corrections.
   std::unique_ptr<LocalMapper> mapper_;
   std::unique_ptr<LoopCloser> loop_closer_;
+  LocalMapperStats stopped_mapper_stats_;
+  LoopCloserStats stopped_loop_stats_;
   std::unique_ptr<Tracker> tracker_;
   std::vector<FrameRecord> records_;
   std::uint64_t next_frame_id_ = 0;
   std::optional<Eigen::Isometry3d> last_T_world_cam_;
+  int new_map_after_lost_frames_ = 0;  // 0: never
+  int lost_frames_ = 0;
+  int new_maps_started_ = 0;
+  std::vector<MapMergeStats> merges_;
+  // Keyframes local mapping has finished, for merge detection (filled by the
+  // mapper thread, drained by process()).
+  std::mutex finished_mutex_;
+  std::vector<KeyFramePtr> finished_keyframes_;
 };
 
 // The camera model the system uses for a sensor: RGB-D from the settings

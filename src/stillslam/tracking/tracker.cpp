@@ -18,10 +18,25 @@ constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides w
 }  // namespace
 
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
-    : map_(map), options_(options), link_(std::move(link)) {}
+    : map_(&map), options_(options), link_(std::move(link)) {}
+
+void Tracker::start_new_map(Map& map) {
+  map_ = &map;
+  state_ = TrackingState::NotInitialized;
+  last_frame_ = Frame();
+  T_last_ref_ = Eigen::Isometry3d::Identity();
+  velocity_.reset();
+  reference_keyframe_.reset();
+  last_keyframe_.reset();
+  last_keyframe_frame_id_ = 0;
+  last_lost_frame_id_ = 0;
+  was_lost_ = false;
+}
+
+void Tracker::switch_map(Map& map) { map_ = &map; }
 
 TrackingResult Tracker::track(Frame& frame) {
-  std::lock_guard<std::mutex> lock(map_.update_mutex());
+  std::lock_guard<std::mutex> lock(map_->update_mutex());
   TrackingResult result;
   if (state_ == TrackingState::NotInitialized) {
     if (!initialize(frame)) {
@@ -87,11 +102,11 @@ TrackingResult Tracker::track(Frame& frame) {
 bool Tracker::initialize(Frame& frame) {
   if (frame.num_with_depth() < options_.init_min_keypoints) return false;
   frame.set_pose(Eigen::Isometry3d::Identity());
-  KeyFramePtr kf = map_.create_keyframe(frame);
+  KeyFramePtr kf = map_->create_keyframe(frame);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const auto p = kf->unproject(i);
     if (!p) continue;
-    MapPointPtr mp = map_.create_map_point(*p, kf.get());
+    MapPointPtr mp = map_->create_map_point(*p, kf.get());
     mp->add_observation(kf.get(), i);
     kf->set_map_point(i, mp);
     mp->compute_distinctive_descriptor();
@@ -258,7 +273,7 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
 }
 
 bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
-  const std::size_t num_keyframes = map_.num_keyframes();
+  const std::size_t num_keyframes = map_->num_keyframes();
   const std::uint64_t since_last = frame.id() - last_keyframe_frame_id_;
   if (was_lost_ && frame.id() < last_lost_frame_id_ + static_cast<std::uint64_t>(options_.max_frames_between_keyframes) &&
       num_keyframes > static_cast<std::size_t>(options_.max_frames_between_keyframes)) {
@@ -300,7 +315,7 @@ void Tracker::create_keyframe(Frame& frame) {
     const MapPointPtr& mp = frame.map_point(i);
     if (mp && (mp->num_observations() < 1 || frame.is_outlier(i))) frame.set_map_point(i, nullptr);
   }
-  KeyFramePtr kf = map_.create_keyframe(frame);
+  KeyFramePtr kf = map_->create_keyframe(frame);
   std::vector<std::pair<float, std::size_t>> by_depth;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     if (frame.depth(i) > 0) by_depth.emplace_back(frame.depth(i), i);
@@ -310,7 +325,7 @@ void Tracker::create_keyframe(Frame& frame) {
   const double close_depth = frame.setup().close_depth;
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i)) {
-      MapPointPtr mp = map_.create_map_point(*kf->unproject(i), kf.get());
+      MapPointPtr mp = map_->create_map_point(*kf->unproject(i), kf.get());
       mp->add_observation(kf.get(), i);
       kf->set_map_point(i, mp);
       mp->compute_distinctive_descriptor();

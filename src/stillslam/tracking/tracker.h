@@ -49,6 +49,14 @@ class Tracker {
   // holds its pose and reference keyframe.
   TrackingResult track(Frame& frame);
 
+  // Atlas: forget everything and initialize a new (empty) map from the next
+  // frame with enough depth. The old map is no longer touched.
+  void start_new_map(Map& map);
+  // Atlas merge: the tracker's keyframes now live in `map` (moved there with
+  // corrected poses); tracking continues without a break.
+  void switch_map(Map& map);
+  Map& map() const { return *map_; }
+
   TrackingState state() const { return state_; }
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
 
@@ -64,7 +72,7 @@ class Tracker {
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   void create_keyframe(Frame& frame);
 
-  Map& map_;
+  Map* map_;  // never null
   TrackerOptions options_;
   LocalMappingLink link_;
   TrackingState state_ = TrackingState::NotInitialized;
