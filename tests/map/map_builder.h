@@ -11,6 +11,9 @@ namespace stillslam::test {
 class MapBuilder {
  public:
   explicit MapBuilder(const SyntheticScene& scene) : scene_(scene) {}
+  // Builds into map `map_id` sharing `ids` with other maps (an atlas' counters).
+  MapBuilder(const SyntheticScene& scene, std::uint64_t map_id, std::shared_ptr<MapIdCounters> ids)
+      : scene_(scene), map_(map_id, std::move(ids)) {}
 
   KeyFramePtr add_keyframe(const Eigen::Isometry3d& T_cam_world) {
     std::vector<std::size_t> ids;

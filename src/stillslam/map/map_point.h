@@ -78,6 +78,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   std::shared_ptr<MapPoint> replaced_by() const { return replaced_by_; }
 
  private:
+  friend struct MapFileAccess;  // map_file.cpp saves and restores every field (normal, distances, reference)
   std::uint64_t id_;
   std::uint64_t first_keyframe_id_;
   Eigen::Vector3d position_;

@@ -1,0 +1,513 @@
+// Map file format, version 1 (all integers little-endian):
+//   8 bytes  magic "STILLMAP"
+//   u32      format version
+//   u32      compression of the payload (0: none, 1: zstd)
+//   u64      stored payload size, u64 payload size after decompression
+//   payload
+//   u64      FNV-1a 64 checksum of every byte before it
+// Payload:
+//   context: str sensor; camera (u32 model, f64 fx fy cx cy, u32 n + n f64
+//            distortion, i32 width height, f64 bf close_depth, i32 levels,
+//            f32 scale factor); u64 vocabulary fingerprint
+//   u64 active map id, next map id, next keyframe id, next point id (the
+//       atlas' counters: ids are unique across maps)
+//   u32 map count, per map:
+//     u64 id
+//     u32 keyframes, each: u64 id, frame id; f64 timestamp; 12 f64 T_cam_world
+//         (3x4, row-major); u32 n; n x (f32 x y size angle response, i32 octave
+//         class_id); n x 32 descriptor bytes; n f32 u_right; n f32 depth;
+//         n u64 map-point id (kNone: empty slot); u64 parent id; u8 origin flag
+//     u32 points, each: u64 id, first keyframe id; 3 f64 position; 3 f64 normal;
+//         32 descriptor bytes; f64 min, max distance; u64 reference keyframe id;
+//         i32 visible, found; u32 m; m x (u64 keyframe id, u32 keypoint index)
+//     u32 loop edges, each u64 a, b
+// (str = u32 length + bytes.)
+#include "stillslam/map/map_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "stillslam/core/error.h"
+#include "stillslam/map/frame.h"
+#include "stillslam/map/map_file_bytes.h"
+
+namespace stillslam {
+
+using map_file_detail::ByteReader;
+using map_file_detail::ByteWriter;
+
+namespace {
+
+constexpr char kMagic[8] = {'S', 'T', 'I', 'L', 'L', 'M', 'A', 'P'};
+constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8;
+constexpr std::size_t kChecksumBytes = 8;
+constexpr std::uint64_t kNone = ~0ULL;
+constexpr std::uint32_t kNoCompression = 0;
+
+std::uint64_t fnv1a(const char* p, std::size_t n) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(p[i]);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+std::string rerun_hint() { return "re-create it with `stillslam run --save-map`"; }
+
+// The camera numbers that must agree between the map and the running system.
+struct CameraRecord {
+  std::uint32_t model = 0;
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  std::vector<double> distortion;
+  std::int32_t width = 0, height = 0;
+  double bf = 0, close_depth = 0;
+  std::int32_t levels = 0;
+  float scale_factor = 0;
+
+  static CameraRecord of(const CameraSetup& setup) {
+    const CameraCalibration& c = setup.camera.calibration();
+    CameraRecord r;
+    r.model = static_cast<std::uint32_t>(c.model);
+    r.fx = setup.camera.fx();
+    r.fy = setup.camera.fy();
+    r.cx = setup.camera.cx();
+    r.cy = setup.camera.cy();
+    r.distortion = c.distortion;
+    r.width = c.width;
+    r.height = c.height;
+    r.bf = setup.camera.bf();
+    r.close_depth = setup.close_depth;
+    r.levels = setup.pyramid.n_levels;
+    r.scale_factor = setup.pyramid.scale_factor;
+    return r;
+  }
+  void write(ByteWriter& w) const {
+    w.put(model);
+    for (double v : {fx, fy, cx, cy}) w.put(v);
+    w.put(static_cast<std::uint32_t>(distortion.size()));
+    for (double v : distortion) w.put(v);
+    w.put(width);
+    w.put(height);
+    w.put(bf);
+    w.put(close_depth);
+    w.put(levels);
+    w.put(scale_factor);
+  }
+  static CameraRecord read(ByteReader& r) {
+    CameraRecord c;
+    c.model = r.get<std::uint32_t>();
+    c.fx = r.get<double>();
+    c.fy = r.get<double>();
+    c.cx = r.get<double>();
+    c.cy = r.get<double>();
+    c.distortion.resize(r.get_count(sizeof(double)));
+    for (double& v : c.distortion) v = r.get<double>();
+    c.width = r.get<std::int32_t>();
+    c.height = r.get<std::int32_t>();
+    c.bf = r.get<double>();
+    c.close_depth = r.get<double>();
+    c.levels = r.get<std::int32_t>();
+    c.scale_factor = r.get<float>();
+    return c;
+  }
+  // Equal up to text round-off of the settings (relative 1e-9).
+  bool matches(const CameraRecord& o) const {
+    const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); };
+    if (model != o.model || width != o.width || height != o.height || levels != o.levels ||
+        distortion.size() != o.distortion.size() || !same(scale_factor, o.scale_factor)) {
+      return false;
+    }
+    for (std::size_t i = 0; i < distortion.size(); ++i) {
+      if (!same(distortion[i], o.distortion[i])) return false;
+    }
+    return same(fx, o.fx) && same(fy, o.fy) && same(cx, o.cx) && same(cy, o.cy) && same(bf, o.bf) &&
+           same(close_depth, o.close_depth);
+  }
+  std::string describe() const {
+    std::ostringstream s;
+    s << (model == 0 ? "pinhole" : "KannalaBrandt8") << " " << width << "x" << height << " fx " << fx << " fy " << fy
+      << " cx " << cx << " cy " << cy << " bf " << bf << " distortion [";
+    for (std::size_t i = 0; i < distortion.size(); ++i) s << (i ? " " : "") << distortion[i];
+    s << "] close depth " << close_depth << " m, " << levels << " ORB levels x " << scale_factor;
+    return s.str();
+  }
+};
+
+std::string hex(std::uint64_t v) {
+  std::ostringstream s;
+  s << std::hex << v;
+  return s.str();
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw Error("map file " + path.string() + " not found or unreadable: pass a file written by "
+                "`stillslam run --save-map FILE`");
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
+
+// Reads and writes the private state of keyframes, points and maps.
+struct MapFileAccess {
+  static void write_payload(ByteWriter& w, const MapFileContext& context, const std::vector<MapToSave>& maps,
+                            std::uint64_t active_map_id, std::uint64_t next_map_id) {
+    w.put_string(context.sensor);
+    CameraRecord::of(*context.setup).write(w);
+    w.put(context.vocabulary_checksum);
+    std::uint64_t next_keyframe_id = 0, next_point_id = 0;
+    for (const MapToSave& m : maps) {
+      next_keyframe_id = std::max(next_keyframe_id, m.map->id_counters()->next_keyframe.load());
+      next_point_id = std::max(next_point_id, m.map->id_counters()->next_point.load());
+      next_map_id = std::max(next_map_id, m.map->id() + 1);
+    }
+    w.put(active_map_id);
+    w.put(next_map_id);
+    w.put(next_keyframe_id);
+    w.put(next_point_id);
+    w.put(static_cast<std::uint32_t>(maps.size()));
+    for (const MapToSave& m : maps) write_map(w, m);
+  }
+
+  static MapFileContents read_payload(ByteReader& r, const std::filesystem::path& path,
+                                      const MapFileContext& expected, const std::shared_ptr<MapIdCounters>& ids) {
+    const std::string sensor = r.get_string();
+    const CameraRecord camera = CameraRecord::read(r);
+    const auto vocabulary = r.get<std::uint64_t>();
+    if (sensor != expected.sensor) {
+      throw Error(path.string() + ": the map was made with a " + sensor + " sensor, this run is " + expected.sensor +
+                  "; run it with the kind of input the map was saved from");
+    }
+    const CameraRecord running = CameraRecord::of(*expected.setup);
+    if (!camera.matches(running)) {
+      throw Error(path.string() + ": calibration mismatch: the map was made with " + camera.describe() +
+                  ", this run uses " + running.describe() + "; use the settings (and dataset calibration) the map "
+                  "was saved with");
+    }
+    if (vocabulary != expected.vocabulary_checksum) {
+      const auto name = [](std::uint64_t v) { return v == 0 ? std::string("none") : "fingerprint " + hex(v); };
+      throw Error(path.string() + ": vocabulary mismatch: the map was saved with vocabulary " + name(vocabulary) +
+                  ", this run has " + name(expected.vocabulary_checksum) +
+                  "; run with the --vocabulary the map was saved with");
+    }
+    MapFileContents contents;
+    contents.active_map_id = r.get<std::uint64_t>();
+    contents.next_map_id = r.get<std::uint64_t>();
+    contents.next_keyframe_id = r.get<std::uint64_t>();
+    contents.next_point_id = r.get<std::uint64_t>();
+    // Loaded maps share the caller's counters (an atlas') or new ones, raised
+    // past every id in the file.
+    const std::shared_ptr<MapIdCounters> counters = ids ? ids : std::make_shared<MapIdCounters>();
+    counters->next_keyframe = std::max(counters->next_keyframe.load(), contents.next_keyframe_id);
+    counters->next_point = std::max(counters->next_point.load(), contents.next_point_id);
+    const std::size_t n_maps = r.get_count(8 + 4 + 4 + 4);
+    for (std::size_t i = 0; i < n_maps; ++i) {
+      contents.maps.push_back(read_map(r, expected.setup, counters, contents.next_keyframe_id, contents.next_point_id));
+    }
+    std::unordered_set<std::uint64_t> keyframe_ids, point_ids, map_ids;
+    for (const LoadedMap& m : contents.maps) {
+      if (!map_ids.insert(m.id).second) r.fail("duplicate map id " + std::to_string(m.id));
+      for (const KeyFramePtr& kf : m.map->keyframes()) {
+        if (!keyframe_ids.insert(kf->id()).second) r.fail("keyframe id " + std::to_string(kf->id()) + " in two maps");
+      }
+      for (const MapPointPtr& mp : m.map->map_points()) {
+        if (!point_ids.insert(mp->id()).second) r.fail("point id " + std::to_string(mp->id()) + " in two maps");
+      }
+    }
+    if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the last map");
+    return contents;
+  }
+
+  static void write_map(ByteWriter& w, const MapToSave& entry) {
+    const Map& map = *entry.map;
+    w.put(map.id());
+    const std::vector<MapPointPtr> points = map.map_points();
+    std::unordered_map<const MapPoint*, std::uint64_t> saved_points;
+    for (const MapPointPtr& mp : points) saved_points.emplace(mp.get(), mp->id());
+    const std::vector<KeyFramePtr> keyframes = map.keyframes();
+    std::unordered_map<const KeyFrame*, std::uint64_t> saved_keyframes;
+    for (const KeyFramePtr& kf : keyframes) saved_keyframes.emplace(kf.get(), kf->id());
+    const auto keyframe_id = [&](const KeyFrame* kf) {
+      const auto it = saved_keyframes.find(kf);
+      return it == saved_keyframes.end() ? kNone : it->second;
+    };
+
+    w.put(static_cast<std::uint32_t>(keyframes.size()));
+    for (const KeyFramePtr& kf : keyframes) write_keyframe(w, *kf, saved_points, keyframe_id(kf->parent()));
+    w.put(static_cast<std::uint32_t>(points.size()));
+    for (const MapPointPtr& mp : points) {
+      w.put(mp->id_);
+      w.put(mp->first_keyframe_id_);
+      for (int i = 0; i < 3; ++i) w.put(mp->position_[i]);
+      for (int i = 0; i < 3; ++i) w.put(mp->normal_[i]);
+      w.put_bytes(mp->descriptor_.data(), mp->descriptor_.size());
+      w.put(mp->min_distance_);
+      w.put(mp->max_distance_);
+      w.put(keyframe_id(mp->reference_));
+      w.put(static_cast<std::int32_t>(mp->visible_));
+      w.put(static_cast<std::int32_t>(mp->found_));
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> observations;
+      for (const auto& [kf, index] : mp->observations_) {
+        const std::uint64_t id = keyframe_id(kf);
+        if (id != kNone) observations.emplace_back(id, static_cast<std::uint32_t>(index));
+      }
+      w.put(static_cast<std::uint32_t>(observations.size()));
+      for (const auto& [id, index] : observations) {
+        w.put(id);
+        w.put(index);
+      }
+    }
+    w.put(static_cast<std::uint32_t>(entry.loop_edges.size()));
+    for (const auto& [a, b] : entry.loop_edges) {
+      w.put(a);
+      w.put(b);
+    }
+  }
+
+  static void write_keyframe(ByteWriter& w, const KeyFrame& kf,
+                             const std::unordered_map<const MapPoint*, std::uint64_t>& saved_points,
+                             std::uint64_t parent_id) {
+    w.put(kf.id());
+    w.put(kf.frame_id());
+    w.put(kf.timestamp());
+    const Eigen::Matrix<double, 3, 4> T = kf.T_cam_world().matrix().topRows<3>();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) w.put(T(r, c));
+    }
+    const std::size_t n = kf.size();
+    w.put(static_cast<std::uint32_t>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const cv::KeyPoint& kp = kf.keypoint(i);
+      for (float v : {kp.pt.x, kp.pt.y, kp.size, kp.angle, kp.response}) w.put(v);
+      w.put(static_cast<std::int32_t>(kp.octave));
+      w.put(static_cast<std::int32_t>(kp.class_id));
+    }
+    for (std::size_t i = 0; i < n; ++i) w.put_bytes(kf.descriptor(i), 32);
+    for (std::size_t i = 0; i < n; ++i) w.put(kf.u_right(i));
+    for (std::size_t i = 0; i < n; ++i) w.put(kf.depth(i));
+    for (const MapPointPtr& mp : kf.map_points()) {
+      const auto it = mp ? saved_points.find(mp.get()) : saved_points.end();
+      w.put(it == saved_points.end() ? kNone : it->second);
+    }
+    w.put(parent_id);
+    w.put(static_cast<std::uint8_t>(kf.is_origin() ? 1 : 0));
+  }
+
+  static LoadedMap read_map(ByteReader& r, const std::shared_ptr<const CameraSetup>& setup,
+                            const std::shared_ptr<MapIdCounters>& ids, std::uint64_t next_keyframe_id,
+                            std::uint64_t next_point_id) {
+    LoadedMap loaded;
+    loaded.id = r.get<std::uint64_t>();
+    loaded.map = std::make_unique<Map>(loaded.id, ids);
+    Map& map = *loaded.map;
+
+    struct PendingKeyFrame {
+      std::vector<std::uint64_t> slots;
+      std::uint64_t parent = kNone;
+    };
+    std::vector<PendingKeyFrame> pending(r.get_count(8 + 8 + 8 + 96 + 4 + 9));
+    std::vector<KeyFramePtr> keyframes;
+    keyframes.reserve(pending.size());
+    for (PendingKeyFrame& p : pending) {
+      KeyFramePtr kf = read_keyframe(r, setup, p.slots);
+      p.parent = r.get<std::uint64_t>();
+      kf->set_origin(r.get<std::uint8_t>() != 0);
+      if (kf->id() >= next_keyframe_id) r.fail("keyframe id " + std::to_string(kf->id()) + " >= next id");
+      if (map.keyframe(kf->id())) r.fail("duplicate keyframe id " + std::to_string(kf->id()));
+      map.add_keyframe(kf);
+      keyframes.push_back(std::move(kf));
+    }
+    const auto keyframe_at = [&](std::uint64_t id) -> KeyFrame* {
+      if (id == kNone) return nullptr;
+      KeyFrame* kf = map.keyframe(id).get();
+      if (kf == nullptr) r.fail("unknown keyframe id " + std::to_string(id));
+      return kf;
+    };
+
+    std::unordered_map<std::uint64_t, MapPointPtr> points;
+    const std::size_t n_points = r.get_count(8 + 8 + 48 + 32 + 16 + 8 + 8 + 4);
+    for (std::size_t i = 0; i < n_points; ++i) {
+      const auto id = r.get<std::uint64_t>();
+      const auto first_keyframe_id = r.get<std::uint64_t>();
+      Eigen::Vector3d position, normal;
+      for (int k = 0; k < 3; ++k) position[k] = r.get<double>();
+      for (int k = 0; k < 3; ++k) normal[k] = r.get<double>();
+      auto mp = std::make_shared<MapPoint>(id, position, nullptr);
+      mp->first_keyframe_id_ = first_keyframe_id;
+      mp->normal_ = normal;
+      std::memcpy(mp->descriptor_.data(), r.get_bytes(32), 32);
+      mp->min_distance_ = r.get<double>();
+      mp->max_distance_ = r.get<double>();
+      mp->reference_ = keyframe_at(r.get<std::uint64_t>());
+      mp->visible_ = r.get<std::int32_t>();
+      mp->found_ = r.get<std::int32_t>();
+      const std::size_t n_obs = r.get_count(12);
+      for (std::size_t k = 0; k < n_obs; ++k) {
+        KeyFrame* kf = keyframe_at(r.get<std::uint64_t>());
+        const auto index = r.get<std::uint32_t>();
+        if (kf == nullptr || index >= kf->size()) r.fail("observation index out of range");
+        mp->add_observation(kf, index);
+      }
+      if (id >= next_point_id) r.fail("point id " + std::to_string(id) + " >= next id");
+      if (!points.emplace(id, mp).second) r.fail("duplicate point id " + std::to_string(id));
+      map.add_map_point(mp);
+    }
+
+    for (std::size_t k = 0; k < keyframes.size(); ++k) {
+      KeyFrame& kf = *keyframes[k];
+      for (std::size_t i = 0; i < pending[k].slots.size(); ++i) {
+        const std::uint64_t id = pending[k].slots[i];
+        if (id == kNone) continue;
+        const auto it = points.find(id);
+        if (it == points.end()) r.fail("keyframe slot names unknown point " + std::to_string(id));
+        kf.set_map_point(i, it->second);
+      }
+      KeyFrame* parent = keyframe_at(pending[k].parent);
+      if (parent == &kf) r.fail("keyframe " + std::to_string(kf.id()) + " is its own parent");
+      // Before the connections are rebuilt: the saved parent, not the first connection's.
+      if (parent) kf.change_parent(parent);
+    }
+    for (const KeyFramePtr& kf : keyframes) kf->update_connections();
+
+    const std::size_t n_edges = r.get_count(16);
+    for (std::size_t k = 0; k < n_edges; ++k) {
+      const auto a = r.get<std::uint64_t>();
+      const auto b = r.get<std::uint64_t>();
+      loaded.loop_edges.emplace(a, b);
+    }
+    return loaded;
+  }
+
+  static KeyFramePtr read_keyframe(ByteReader& r, const std::shared_ptr<const CameraSetup>& setup,
+                                   std::vector<std::uint64_t>& slots) {
+    const auto id = r.get<std::uint64_t>();
+    const auto frame_id = r.get<std::uint64_t>();
+    const auto timestamp = r.get<double>();
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    for (int row = 0; row < 3; ++row) {
+      for (int c = 0; c < 4; ++c) T.matrix()(row, c) = r.get<double>();
+    }
+    const std::size_t n = r.get_count(28 + 32 + 8 + 8);
+    std::vector<cv::KeyPoint> keypoints(n);
+    for (cv::KeyPoint& kp : keypoints) {
+      kp.pt.x = r.get<float>();
+      kp.pt.y = r.get<float>();
+      kp.size = r.get<float>();
+      kp.angle = r.get<float>();
+      kp.response = r.get<float>();
+      kp.octave = r.get<std::int32_t>();
+      kp.class_id = r.get<std::int32_t>();
+      if (kp.octave < 0 || kp.octave >= setup->pyramid.n_levels) r.fail("keypoint octave out of range");
+    }
+    cv::Mat descriptors(static_cast<int>(n), 32, CV_8U);
+    if (n > 0) std::memcpy(descriptors.data, r.get_bytes(n * 32), n * 32);
+    std::vector<float> u_right(n), depth(n);
+    for (float& v : u_right) v = r.get<float>();
+    for (float& v : depth) v = r.get<float>();
+    slots.resize(n);
+    for (std::uint64_t& s : slots) s = r.get<std::uint64_t>();
+    Frame frame(frame_id, timestamp, setup, keypoints, keypoints, std::move(descriptors), std::move(u_right),
+                std::move(depth));
+    frame.set_pose(T);
+    return std::make_shared<KeyFrame>(id, frame);
+  }
+};
+
+MapFileStats save_map_file(const std::filesystem::path& path, const MapFileContext& context,
+                           const std::vector<MapToSave>& maps, std::uint64_t active_map_id,
+                           std::uint64_t next_map_id) {
+  if (!context.setup) throw Error("save_map_file: no camera setup given for " + path.string());
+  ByteWriter payload;
+  MapFileAccess::write_payload(payload, context, maps, active_map_id, next_map_id);
+
+  ByteWriter file;
+  file.put_bytes(kMagic, sizeof(kMagic));
+  file.put(kMapFileVersion);
+  file.put(kNoCompression);
+  file.put(static_cast<std::uint64_t>(payload.bytes().size()));
+  file.put(static_cast<std::uint64_t>(payload.bytes().size()));
+  file.bytes() += payload.bytes();
+  payload.bytes().clear();
+  payload.bytes().shrink_to_fit();
+  file.put(fnv1a(file.bytes().data(), file.bytes().size()));
+
+  std::filesystem::path tmp = path;
+  tmp += ".partial";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(file.bytes().data(), static_cast<std::streamsize>(file.bytes().size()));
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw Error("cannot write map file " + path.string() + ": check that the folder exists and is writable "
+                  "and the disk is not full");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw Error("cannot write map file " + path.string() + ": " + ec.message());
+
+  MapFileStats stats;
+  stats.bytes = file.bytes().size();
+  stats.maps = maps.size();
+  for (const MapToSave& m : maps) {
+    stats.keyframes += m.map->num_keyframes();
+    stats.map_points += m.map->num_map_points();
+  }
+  return stats;
+}
+
+MapFileStats save_map_file(const std::filesystem::path& path, const MapFileContext& context, const Map& map,
+                           const MapLoopEdges& loop_edges) {
+  return save_map_file(path, context, {MapToSave{&map, loop_edges}}, map.id());
+}
+
+MapFileContents load_map_file(const std::filesystem::path& path, const MapFileContext& expected,
+                              const std::shared_ptr<MapIdCounters>& ids) {
+  if (!expected.setup) throw Error("load_map_file: no camera setup given for " + path.string());
+  const std::string bytes = read_file(path);
+  const std::string name = path.string();
+  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
+    throw Error(name + ": not a stillslam map file (no STILLMAP header); pass a file written by "
+                "`stillslam run --save-map FILE`");
+  }
+  if (bytes.size() < kHeaderBytes + kChecksumBytes) {
+    throw Error(name + ": truncated map file (" + std::to_string(bytes.size()) + " bytes); " + rerun_hint());
+  }
+  ByteReader header(bytes.data() + sizeof(kMagic), kHeaderBytes - sizeof(kMagic), name);
+  const auto version = header.get<std::uint32_t>();
+  if (version != kMapFileVersion) {
+    throw Error(name + ": map file format version " + std::to_string(version) + ", this build reads version " +
+                std::to_string(kMapFileVersion) + "; " + rerun_hint() + " using this build");
+  }
+  const auto compression = header.get<std::uint32_t>();
+  const auto stored = header.get<std::uint64_t>();
+  const auto raw = header.get<std::uint64_t>();
+  const std::uint64_t expected_size = kHeaderBytes + stored + kChecksumBytes;
+  if (bytes.size() < expected_size) {
+    throw Error(name + ": truncated map file (" + std::to_string(bytes.size()) + " bytes, the header says " +
+                std::to_string(expected_size) + "); " + rerun_hint());
+  }
+  std::uint64_t checksum;
+  std::memcpy(&checksum, bytes.data() + bytes.size() - kChecksumBytes, kChecksumBytes);
+  if (bytes.size() != expected_size || fnv1a(bytes.data(), bytes.size() - kChecksumBytes) != checksum) {
+    throw Error(name + ": corrupt map file (checksum mismatch); " + rerun_hint());
+  }
+  if (compression != kNoCompression || raw != stored) {
+    throw Error(name + ": corrupt map file (unknown payload compression " + std::to_string(compression) + "); " +
+                rerun_hint());
+  }
+  ByteReader payload(bytes.data() + kHeaderBytes, stored, name);
+  return MapFileAccess::read_payload(payload, path, expected, ids);
+}
+
+}  // namespace stillslam
