@@ -51,7 +51,7 @@ void add_simulate_command(CLI::App& app) {
       "simulate", "Render a synthetic RGB-D (and stereo) sequence with moving people and exact ground truth");
   cmd->add_option("--out", args->out, "Output folder (TUM RGB-D layout; EuRoC mav0/ with --stereo)");
   cmd->add_option("--trajectory", o.trajectory,
-                  "walking_xyz, halfsphere, rpy, static, or a TUM trajectory file")
+                  "walking_xyz, halfsphere, rpy, static, loop (a turn around the room every 20 s), or a TUM trajectory file")
       ->capture_default_str();
   cmd->add_option("--frames", o.frames, "Number of frames at most (walking_xyz has 865 at 30 Hz)")
       ->capture_default_str();

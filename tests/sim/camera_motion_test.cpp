@@ -57,12 +57,45 @@ TEST(CameraMotion, RpyRotatesAboutAFixedPointAndStaticBarelyMoves) {
   EXPECT_LT(max_still_move, 0.01);
 }
 
+TEST(CameraMotion, LoopTurnsOnceAroundTheRoomAndComesBackToItsStartPose) {
+  const CameraMotion m = CameraMotion::create("loop", kData, 3);
+  const double T = CameraMotion::kLoopPeriod;
+  // Periodic: the start pose again after one turn (and a few seconds later, the same poses as then).
+  EXPECT_TRUE(m.pose_at(T).isApprox(m.pose_at(0), 1e-9));
+  EXPECT_TRUE(m.pose_at(T + 2.5).isApprox(m.pose_at(2.5), 1e-9));
+  // Starts in front of the desk looking at it (along +y), and its heading turns through a whole circle.
+  const Eigen::Vector3d axis0 = m.pose_at(0).linear().col(2);
+  EXPECT_GT(Eigen::Vector3d(axis0.x(), axis0.y(), 0).normalized().y(), 0.999);
+  EXPECT_LT(m.pose_at(0).translation().y(), SceneLayout::desk_centre().y() - 0.4);
+  double turned = 0, min_wall = 1e9, max_step = 0, max_turn = 0;
+  double previous = std::atan2(m.pose_at(0).linear()(0, 2), m.pose_at(0).linear()(1, 2));
+  for (double t = 0.1; t <= T + 1e-9; t += 0.1) {
+    const Eigen::Isometry3d P = m.pose_at(t);
+    const Eigen::Isometry3d Q = m.pose_at(t - 0.1);
+    const double heading = std::atan2(P.linear()(0, 2), P.linear()(1, 2));
+    turned += std::remainder(heading - previous, 6.283185307179586);
+    previous = heading;
+    const Eigen::Vector3d p = P.translation();
+    min_wall = std::min({min_wall, p.x() - SceneLayout::kMinX, SceneLayout::kMaxX - p.x(),
+                         p.y() - SceneLayout::kMinY, SceneLayout::kMaxY - p.y()});
+    max_step = std::max(max_step, (p - Q.translation()).norm());
+    max_turn = std::max(max_turn, Eigen::AngleAxisd(P.linear() * Q.linear().transpose()).angle());
+    EXPECT_LT(std::abs(P.linear().col(0).z()), 1e-9) << "no roll";
+    EXPECT_LT(P.linear().col(2).z(), 0) << "looks slightly down";
+  }
+  EXPECT_NEAR(std::abs(turned), 6.283185307179586, 1e-6);
+  EXPECT_GT(min_wall, 1.5);       // always 1.5 m or more from every wall
+  EXPECT_LT(max_step, 0.03);      // walking pace: under 0.3 m/s
+  EXPECT_LT(max_turn, 0.06);      // under 35 deg/s
+}
+
 TEST(CameraMotion, UnknownTrajectoryNamesTheChoices) {
   try {
     CameraMotion::create("spiral", kData, 0);
     FAIL() << "expected an error";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("halfsphere"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("loop"), std::string::npos);
   }
 }
 

@@ -52,12 +52,14 @@ CameraMotion CameraMotion::create(const std::string& name, const fs::path& data_
     m.kind_ = Kind::Rpy;
   } else if (name == "static") {
     m.kind_ = Kind::Static;
+  } else if (name == "loop") {
+    m.kind_ = Kind::Loop;
   } else {
     const fs::path file =
         name == "walking_xyz" ? data_dir / "sim" / "tum_fr3_walking_xyz_groundtruth.txt" : fs::path(name);
     if (name != "walking_xyz" && !fs::exists(file)) {
       throw Error("--trajectory " + name +
-                  ": not a file; use walking_xyz, halfsphere, rpy, static or a TUM trajectory file");
+                  ": not a file; use walking_xyz, halfsphere, rpy, static, loop or a TUM trajectory file");
     }
     m.kind_ = Kind::File;
     if (!fs::exists(file)) {
@@ -122,6 +124,23 @@ Eigen::Isometry3d CameraMotion::pose_at(double dt) const {
                                         0.003 * std::sin(kTwoPi * 1.3 * t + phase_[4]),
                                         0.002 * std::sin(kTwoPi * 1.7 * t + phase_[5]));
       return T;
+    }
+    case Kind::Loop: {
+      // A walk around the room: the camera goes round a 0.5 m circle in the
+      // free floor between the desk and the shelf, looking outward (desk,
+      // right wall, shelf, side table, desk again), so every wall and piece of
+      // furniture is 1-3 m away and in the depth range. Height and pitch
+      // wobble with whole multiples of the turn's frequency: the path is
+      // exactly periodic, so the start place is revisited with its start pose.
+      const double w = kTwoPi / kLoopPeriod;
+      const double heading = w * t;  // 0: looking along +y at the desk; turning right (clockwise from above)
+      const Eigen::Vector3d out(std::sin(heading), std::cos(heading), 0.0);
+      const Eigen::Vector3d centre(0.0, 0.6, 0.0);
+      const double height = 0.08 * std::sin(2 * w * t + phase_[0]);
+      const double pitch = -0.12 + 0.06 * std::sin(3 * w * t + phase_[1]);  // radians, negative = down
+      const Eigen::Vector3d eye = centre + 0.5 * out + Eigen::Vector3d(0, 0, height);
+      const Eigen::Vector3d target = eye + out * std::cos(pitch) + Eigen::Vector3d(0, 0, std::sin(pitch));
+      return look_at(eye, target);
     }
   }
   return Eigen::Isometry3d::Identity();

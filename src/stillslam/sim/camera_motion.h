@@ -18,8 +18,10 @@ struct TimedPose {
 
 class CameraMotion {
  public:
-  // name: walking_xyz | halfsphere | rpy | static | <trajectory file: TUM, EuRoC or KITTI>. walking_xyz is read from
-  // data_dir/sim/tum_fr3_walking_xyz_groundtruth.txt. seed varies phases of generated paths.
+  // name: walking_xyz | halfsphere | rpy | static | loop | <trajectory file: TUM, EuRoC or KITTI>. walking_xyz is
+  // read from data_dir/sim/tum_fr3_walking_xyz_groundtruth.txt. seed varies phases of generated paths.
+  // loop: one turn around the room every kLoopPeriod seconds (see pose_at), periodic, so frame
+  // kLoopPeriod * fps repeats frame 0 exactly and later frames revisit the start.
   static CameraMotion create(const std::string& name, const std::filesystem::path& data_dir,
                              std::uint64_t seed);
 
@@ -29,8 +31,10 @@ class CameraMotion {
   // Pose at dt seconds after the start (clamped to the path).
   Eigen::Isometry3d pose_at(double dt) const;
 
+  static constexpr double kLoopPeriod = 20.0;  // seconds per turn of the "loop" path
+
  private:
-  enum class Kind { File, HalfSphere, Rpy, Static };
+  enum class Kind { File, HalfSphere, Rpy, Static, Loop };
   Kind kind_ = Kind::Static;
   std::vector<TimedPose> keys_;
   std::int64_t start_ns_ = 0;
