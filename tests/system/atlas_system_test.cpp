@@ -1,0 +1,140 @@
+// Atlas end to end on a rendered sequence: 15 black frames make tracking lose
+// the map and relocalization fail; after 10 lost frames a new map starts and
+// initializes from the first frame with an image again. Without merging the
+// frames after the gap are tracked in map 1 and those before stay in map 0;
+// with merging the new map is recognized in the old one and merged back, and
+// the whole trajectory is in one frame again.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "stillslam/eval/evaluate.h"
+#include "stillslam/system/system.h"
+#include "system/sim_sequence.h"
+
+namespace stillslam {
+namespace {
+
+constexpr std::size_t kBlankBegin = 40;
+constexpr std::size_t kBlankEnd = 55;  // first frame with an image again
+constexpr int kLostFramesForNewMap = 10;
+
+std::filesystem::path vocabulary_file() {
+  return std::filesystem::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
+}
+
+test::SimSequence sequence_with_blank() {
+  test::SimSequence seq = test::render_sim_sequence("walking_xyz", 120, 320, 240, false);
+  for (std::size_t i = kBlankBegin; i < kBlankEnd; ++i) {
+    seq.frames[i].gray.setTo(0);
+    seq.frames[i].color.setTo(0);
+  }
+  return seq;
+}
+
+struct Outcome {
+  std::vector<FrameStats> frames;
+  std::vector<MapPose> trajectory;
+  std::size_t maps = 0;
+  int new_maps = 0;
+  std::vector<MapMergeStats> merges;
+};
+
+Outcome run(const test::SimSequence& seq, bool merging) {
+  SystemOptions options;
+  options.deterministic = true;
+  options.tracker.init_min_keypoints = 300;
+  options.vocabulary_path = vocabulary_file();
+  options.new_map_after_lost_frames = kLostFramesForNewMap;
+  options.map_merging = merging;
+  System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
+  Outcome out;
+  for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
+  system.shutdown();
+  out.trajectory = system.trajectory_with_maps();
+  out.maps = system.num_maps();
+  out.new_maps = system.new_maps_started();
+  out.merges = system.merges();
+  return out;
+}
+
+Trajectory poses_of(const std::vector<MapPose>& t, std::optional<std::uint64_t> map_id = std::nullopt) {
+  Trajectory out;
+  for (const MapPose& p : t) {
+    if (!map_id || p.map_id == *map_id) out.push_back(p.pose);
+  }
+  return out;
+}
+
+TEST(AtlasEndToEnd, NewMapAfterRepeatedRelocalizationFailure) {
+  if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
+  const test::SimSequence seq = sequence_with_blank();
+  const Outcome out = run(seq, false);
+
+  const std::size_t switch_frame = kBlankBegin + kLostFramesForNewMap - 1;
+  for (std::size_t i = 0; i < kBlankBegin; ++i) {
+    EXPECT_TRUE(out.frames[i].has_pose) << i;
+    EXPECT_EQ(out.frames[i].map_id, 0u) << i;
+  }
+  for (std::size_t i = kBlankBegin; i <= switch_frame; ++i) {
+    EXPECT_EQ(out.frames[i].state, TrackingState::Lost) << i;
+    EXPECT_EQ(out.frames[i].new_map, i == switch_frame) << i;
+  }
+  for (std::size_t i = switch_frame + 1; i < kBlankEnd; ++i) {
+    EXPECT_EQ(out.frames[i].state, TrackingState::NotInitialized) << i;  // black: no map to start
+  }
+  EXPECT_EQ(out.frames[kBlankEnd].reason, "initialized");
+  for (std::size_t i = kBlankEnd; i < out.frames.size(); ++i) {
+    EXPECT_TRUE(out.frames[i].has_pose) << i;
+    EXPECT_EQ(out.frames[i].map_id, 1u) << i;
+  }
+  EXPECT_EQ(out.new_maps, 1);
+  EXPECT_EQ(out.maps, 2u);
+  EXPECT_TRUE(out.merges.empty());
+
+  // Frames before the gap in map 0, after it in map 1, each accurate in its own frame.
+  const Trajectory map0 = poses_of(out.trajectory, 0), map1 = poses_of(out.trajectory, 1);
+  EXPECT_EQ(map0.size(), kBlankBegin);
+  EXPECT_EQ(map1.size(), seq.frames.size() - kBlankEnd);
+  const double ate0 = evaluate(seq.groundtruth, map0, EvaluationOptions{}).ape_stats.rmse;
+  const double ate1 = evaluate(seq.groundtruth, map1, EvaluationOptions{}).ape_stats.rmse;
+  std::cout << "map 0: " << map0.size() << " poses, ATE " << ate0 << " m; map 1: " << map1.size()
+            << " poses, ATE " << ate1 << " m\n";
+  EXPECT_LT(ate0, 0.01);
+  EXPECT_LT(ate1, 0.01);
+  // Map 1 starts at its own origin: its first pose is the identity.
+  EXPECT_LT(map1.front().T_world_cam.translation().norm(), 1e-9);
+}
+
+TEST(AtlasEndToEnd, NewMapIsMergedBackIntoTheOldOne) {
+  if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
+  const test::SimSequence seq = sequence_with_blank();
+  const Outcome out = run(seq, true);
+
+  EXPECT_EQ(out.new_maps, 1);
+  ASSERT_EQ(out.merges.size(), 1u);
+  EXPECT_EQ(out.merges[0].source_map, 1u);
+  EXPECT_EQ(out.merges[0].target_map, 0u);
+  EXPECT_EQ(out.maps, 1u);
+  std::size_t merged_at = 0;
+  for (std::size_t i = 0; i < out.frames.size(); ++i) {
+    if (out.frames[i].merged) merged_at = i;
+  }
+  std::cout << "new map at frame " << kBlankEnd << ", merged at frame " << merged_at << " ("
+            << out.merges[0].inliers << " inliers, " << out.merges[0].fused_points << " points fused)\n";
+  EXPECT_GT(merged_at, kBlankEnd);
+  for (std::size_t i = merged_at + 1; i < out.frames.size(); ++i) {
+    EXPECT_TRUE(out.frames[i].has_pose) << i;
+    EXPECT_EQ(out.frames[i].map_id, 0u) << i;
+  }
+  // Every tracked frame, before and after the gap, in map 0's frame.
+  for (const MapPose& p : out.trajectory) EXPECT_EQ(p.map_id, 0u);
+  EXPECT_EQ(out.trajectory.size(), seq.frames.size() - (kBlankEnd - kBlankBegin));
+  const EvaluationResult ev = evaluate(seq.groundtruth, poses_of(out.trajectory), EvaluationOptions{});
+  std::cout << "ATE over the whole sequence after the merge: " << ev.ape_stats.rmse << " m (max "
+            << ev.ape_stats.max << ") over " << ev.pairs << " poses\n";
+  EXPECT_LT(ev.ape_stats.rmse, 0.01);
+}
+
+}  // namespace
+}  // namespace stillslam
