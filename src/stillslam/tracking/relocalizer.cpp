@@ -1,5 +1,7 @@
 #include "stillslam/tracking/relocalizer.h"
 
+#include <algorithm>
+#include <array>
 #include <unordered_set>
 
 #include "stillslam/map/projection_search.h"
@@ -11,23 +13,35 @@ namespace stillslam {
 
 namespace {
 
-// Projects the candidate's local map (its points and those of its best
-// covisibles) into the posed frame and matches the ones not matched yet.
+constexpr int kCells = 4;  // verification grid: kCells x kCells image cells
+
+// The candidate's local map: its points and those of its best covisibles.
+std::vector<MapPointPtr> local_map_points(const KeyFrame& kf) {
+  std::unordered_set<const MapPoint*> seen;
+  std::vector<MapPointPtr> out;
+  auto add_points = [&](const KeyFrame& k) {
+    for (const MapPointPtr& mp : k.map_points()) {
+      if (mp && !mp->is_bad() && seen.insert(mp.get()).second) out.push_back(mp);
+    }
+  };
+  add_points(kf);
+  for (KeyFrame* n : kf.best_covisibles(10)) {
+    if (!n->is_bad()) add_points(*n);
+  }
+  return out;
+}
+
+// Projects the candidate's local map into the posed frame and matches the
+// points not matched yet.
 int search_local_map(Frame& frame, const KeyFrame& kf, float window) {
   std::unordered_set<const MapPoint*> known;
   for (const MapPointPtr& mp : frame.map_points()) {
     if (mp) known.insert(mp.get());
   }
   std::vector<ProjectedPoint> projected;
-  auto add_points = [&](const KeyFrame& k) {
-    for (const MapPointPtr& mp : k.map_points()) {
-      if (!mp || mp->is_bad() || !known.insert(mp.get()).second) continue;
-      if (auto p = project_in_frustum(frame, mp)) projected.push_back(*p);
-    }
-  };
-  add_points(kf);
-  for (KeyFrame* n : kf.best_covisibles(10)) {
-    if (!n->is_bad()) add_points(*n);
+  for (const MapPointPtr& mp : local_map_points(kf)) {
+    if (known.count(mp.get())) continue;
+    if (auto p = project_in_frustum(frame, mp)) projected.push_back(*p);
   }
   return search_by_projection(frame, projected, window / 2.5f, 0.9f);
 }
@@ -37,18 +51,23 @@ int search_local_map(Frame& frame, const KeyFrame& kf, float window) {
 RelocalizationResult Relocalizer::relocalize(Frame& frame, const FeatureVector& frame_features,
                                              const std::vector<RelocalizationCandidate>& candidates) const {
   RelocalizationResult best;
-  const std::optional<Eigen::Isometry3d> initial_pose =
-      frame.has_pose() ? std::optional<Eigen::Isometry3d>(frame.T_cam_world()) : std::nullopt;
   for (const RelocalizationCandidate& candidate : candidates) {
     if (!candidate.keyframe || candidate.keyframe->is_bad()) continue;
-    RelocalizationResult r = try_candidate(frame, frame_features, candidate);
+    // Each attempt works on a copy: a rejected pose never reaches the frame.
+    Frame attempt = frame;
+    RelocalizationResult r = try_candidate(attempt, frame_features, candidate);
     r.candidates_tried = best.candidates_tried + 1;
-    if (r.success) return r;
+    const int rejected = best.rejected_by_verification + (r.checked_points > 0 && !r.success ? 1 : 0);
+    r.rejected_by_verification = rejected;
+    if (r.success) {
+      frame = std::move(attempt);
+      return r;
+    }
     if (r.inliers > best.inliers) best = r;
     best.candidates_tried = r.candidates_tried;
+    best.rejected_by_verification = rejected;
   }
   frame.clear_map_points();
-  if (initial_pose) frame.set_pose(*initial_pose);
   best.success = false;
   return best;
 }
@@ -132,10 +151,66 @@ RelocalizationResult Relocalizer::try_candidate(Frame& frame, const FeatureVecto
     frame.clear_map_points();
     return result;
   }
+  if (!verify(frame, kf, result)) {
+    frame.clear_map_points();
+    return result;
+  }
   result.success = true;
   result.T_cam_world = frame.T_cam_world();
   frame.set_reference_keyframe(candidate.keyframe);
   return result;
+}
+
+bool Relocalizer::verify(Frame& frame, const KeyFrame& kf, RelocalizationResult& result) const {
+  // One more guided search with the optimized pose, so that every predicted
+  // point had its chance (the BoW matches alone cover a fraction of them).
+  search_local_map(frame, kf, options_.fine_window);
+  refine_pose(frame);
+  result.inliers = discard_outliers(frame);
+  if (result.inliers < options_.min_inliers) return false;
+  if (options_.min_found_ratio <= 0 && options_.min_supported_cells <= 0) return true;
+
+  std::unordered_set<const MapPoint*> matched;
+  for (const MapPointPtr& mp : frame.map_points()) {
+    if (mp) matched.insert(mp.get());
+  }
+  const ScalePyramid& pyramid = frame.setup().pyramid;
+  const PinholeCamera& camera = frame.setup().camera;
+  std::array<int, kCells * kCells> cell_checked{}, cell_found{};
+  int checked = 0, found = 0;
+  for (const MapPointPtr& mp : local_map_points(kf)) {
+    const std::optional<ProjectedPoint> p = project_in_frustum(frame, mp);
+    if (!p) continue;
+    const auto x = static_cast<float>(p->pixel.x()), y = static_cast<float>(p->pixel.y());
+    const bool is_found = matched.count(mp.get()) > 0;
+    if (!is_found) {
+      const float r = options_.check_radius * pyramid.scale[static_cast<std::size_t>(p->level)];
+      if (frame.features_in_area(x, y, r, p->level - 1, p->level + 1).empty()) continue;
+    }
+    const int cx = std::clamp(static_cast<int>(x * kCells / camera.width()), 0, kCells - 1);
+    const int cy = std::clamp(static_cast<int>(y * kCells / camera.height()), 0, kCells - 1);
+    ++checked;
+    ++cell_checked[static_cast<std::size_t>(cy * kCells + cx)];
+    if (is_found) {
+      ++found;
+      ++cell_found[static_cast<std::size_t>(cy * kCells + cx)];
+    }
+  }
+  int judged_cells = 0, supported_cells = 0;
+  for (std::size_t c = 0; c < cell_checked.size(); ++c) {
+    if (cell_checked[c] < options_.min_cell_predictions) continue;
+    ++judged_cells;
+    if (cell_found[c] >= std::max(2.0, options_.min_cell_found_ratio * cell_checked[c])) ++supported_cells;
+  }
+  result.checked_points = checked;
+  result.found_points = found;
+  result.judged_cells = judged_cells;
+  result.supported_cells = supported_cells;
+  if (checked >= options_.min_checked_points && found < options_.min_found_ratio * checked) return false;
+  if (judged_cells >= options_.min_judged_cells && supported_cells < options_.min_supported_cells * judged_cells) {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace stillslam

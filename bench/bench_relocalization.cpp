@@ -1,0 +1,326 @@
+// Forced tracking loss (issue #6 bar): the System runs over a rendered
+// sequence in which the frames [a, a + gap) are replaced by black frames (the
+// camera keeps moving), optionally with `skip` more seconds of camera motion
+// left out after them (a jump the wide-window search of the last local map
+// cannot bridge). Per gap position and seed it prints:
+//   frames from the first frame after the gap to the first tracked frame (bar: <= 10)
+//   how tracking came back (relocalized / wide-window search of the last map)
+//   translation error of the first pose after the loss (world frame of the run,
+//     no alignment: a wrong place shows as an offset)
+//   ATE rmse of the run (SE3-aligned)
+//   false relocalizations: relocalized frames whose pose is > 5 cm off
+// and the time of the tracker on lost frames with an image (one relocalization
+// attempt each). Deterministic mode (synchronous local mapping and loop closing).
+//
+//   build/bench/bench_relocalization [--trajectory walking_xyz] [--frames 330]
+//       [--seeds 0,1] [--gaps 60,120,180,240] [--gap 1.0] [--skip 0,2]
+//       [--width 320 --height 240] [--noise 0] [--vocabulary FILE]
+//   build/bench/bench_relocalization --sequence DIR [--gaps ...] [--gap S|0] ...
+//       DIR: a TUM-layout folder written by `stillslam simulate` (settings.yaml,
+//       groundtruth.txt), e.g. with --occlude T:D; --gap 0 keeps every image
+//       (the occluder alone forces the loss) and the gap positions only say
+//       where the loss is expected (first lost frame after that index).
+// Plain main, no Google Benchmark.
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stillslam/core/error.h"
+#include "stillslam/eval/evaluate.h"
+#include "stillslam/io/dataset.h"
+#include "stillslam/io/settings.h"
+#include "stillslam/io/trajectory.h"
+#include "stillslam/sim/simulator.h"
+#include "stillslam/system/system.h"
+
+namespace fs = std::filesystem;
+using namespace stillslam;
+
+namespace {
+
+struct Args {
+  std::string trajectory = "walking_xyz";
+  int frames = 330;
+  std::vector<int> seeds{0, 1};
+  std::vector<int> gaps{60, 120, 180, 240};
+  double gap_s = 1.0;
+  std::vector<double> skips{0.0, 2.0};
+  int width = 320, height = 240;
+  int noise = 0;
+  fs::path vocabulary = fs::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
+  fs::path sequence;        // TUM folder instead of rendering
+  bool segmentation = false;  // --sequence only: run with the settings' segmentation
+  bool verbose = false;
+};
+
+template <typename T>
+std::vector<T> parse_list(const std::string& s) {
+  std::vector<T> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(static_cast<T>(std::stod(item)));
+  }
+  return out;
+}
+
+Args parse(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw Error("missing value after " + k);
+      return argv[++i];
+    };
+    if (k == "--trajectory") a.trajectory = value();
+    else if (k == "--frames") a.frames = std::stoi(value());
+    else if (k == "--seeds") a.seeds = parse_list<int>(value());
+    else if (k == "--gaps") a.gaps = parse_list<int>(value());
+    else if (k == "--gap") a.gap_s = std::stod(value());
+    else if (k == "--skip") a.skips = parse_list<double>(value());
+    else if (k == "--width") a.width = std::stoi(value());
+    else if (k == "--height") a.height = std::stoi(value());
+    else if (k == "--noise") a.noise = std::stoi(value());
+    else if (k == "--vocabulary") a.vocabulary = value();
+    else if (k == "--sequence") a.sequence = value();
+    else if (k == "--segmentation") a.segmentation = true;
+    else if (k == "--verbose") a.verbose = true;
+    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_relocalization.cpp)");
+  }
+  return a;
+}
+
+struct Sequence {
+  std::string name;
+  Settings settings;
+  std::vector<SensorFrame> frames;
+  Trajectory groundtruth;  // one pose per frame, same order
+  double fps = 30;
+};
+
+Sequence render(const Args& a, int seed) {
+  sim::SimulationOptions opts;
+  opts.trajectory = a.trajectory;
+  opts.frames = a.frames;
+  opts.width = a.width;
+  opts.height = a.height;
+  opts.no_people = true;
+  opts.seed = static_cast<std::uint64_t>(seed);
+  opts.noise = a.noise;
+  opts.supersampling = 1;
+  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
+  sim::Simulator simulator(opts);
+  Sequence seq;
+  seq.name = a.trajectory + " seed " + std::to_string(seed);
+  seq.fps = opts.fps;
+  seq.settings.camera = simulator.camera();
+  seq.settings.fps = opts.fps;
+  seq.settings.th_depth = 40;
+  seq.settings.segmentation.enabled = false;
+  seq.settings.orb.n_features = 1000;
+  seq.settings.bf = 40.0 / 535.4 * seq.settings.camera.fx;
+  for (int i = 0; i < simulator.frame_count(); ++i) {
+    sim::SimFrame f = simulator.render_frame(i);
+    SensorFrame s;
+    s.index = static_cast<std::size_t>(i);
+    s.timestamp = f.timestamp;
+    s.color = f.bgr;
+    cv::cvtColor(f.bgr, s.gray, cv::COLOR_BGR2GRAY);
+    s.depth = f.depth;
+    s.name = "sim" + std::to_string(i);
+    seq.frames.push_back(std::move(s));
+    seq.groundtruth.push_back({f.timestamp, f.T_world_cam});
+  }
+  return seq;
+}
+
+Sequence load(const Args& a) {
+  Sequence seq;
+  seq.name = a.sequence.filename().string();
+  seq.settings = load_settings(a.sequence / "settings.yaml");
+  if (!a.segmentation) seq.settings.segmentation.enabled = false;
+  if (seq.settings.fps > 0) seq.fps = seq.settings.fps;
+  const Trajectory gt = read_trajectory(a.sequence / "groundtruth.txt");
+  const auto dataset = open_dataset(a.sequence, seq.settings);
+  for (std::size_t i = 0; i < dataset->size(); ++i) {
+    const double t = dataset->timestamp(i);
+    auto g = std::min_element(gt.begin(), gt.end(), [t](const StampedPose& x, const StampedPose& y) {
+      return std::abs(x.timestamp - t) < std::abs(y.timestamp - t);
+    });
+    if (g == gt.end() || std::abs(g->timestamp - t) > 1e-3) {
+      throw Error((a.sequence / "groundtruth.txt").string() + ": no pose at frame time " + std::to_string(t));
+    }
+    seq.frames.push_back(dataset->load(i));
+    seq.groundtruth.push_back({t, g->T_world_cam});
+  }
+  return seq;
+}
+
+// The run's input: black frames over [begin, end), then `skip` frames left out.
+struct Variant {
+  std::vector<const SensorFrame*> frames;
+  std::vector<StampedPose> groundtruth;
+  std::vector<bool> blank;
+  std::size_t gap_end = 0;  // index (in the variant) of the first frame after the gap
+};
+
+Variant make_variant(const Sequence& seq, std::size_t begin, std::size_t end, std::size_t skip) {
+  Variant v;
+  for (std::size_t i = 0; i < seq.frames.size(); ++i) {
+    if (i >= end && i < end + skip) continue;
+    if (i >= end && v.gap_end == 0) v.gap_end = v.frames.size();
+    v.frames.push_back(&seq.frames[i]);
+    v.groundtruth.push_back(seq.groundtruth[i]);
+    v.blank.push_back(i >= begin && i < end);
+  }
+  if (v.gap_end == 0) v.gap_end = v.frames.size();
+  return v;
+}
+
+// New buffers: assigning cv::Mat::zeros to a copied header would write the
+// zeros into the shared original image.
+SensorFrame black_copy(const SensorFrame& f) {
+  auto black = [](const cv::Mat& m) { return m.empty() ? cv::Mat() : cv::Mat(m.size(), m.type(), cv::Scalar::all(0)); };
+  SensorFrame b = f;
+  b.gray = black(f.gray);
+  b.color = black(f.color);
+  b.depth = black(f.depth);
+  b.right = black(f.right);
+  return b;
+}
+
+struct Outcome {
+  int first_lost = -1;       // variant index of the first lost frame at/after the gap start
+  int frames_to_track = -1;  // from the first frame after the gap to the first tracked frame
+  std::string how;           // "relocalized" or the tracker's reason
+  double error_after = -1;   // translation error of that first pose (m, world frame, no alignment)
+  double max_error_after = 0;  // over the rest of the run
+  double ate = -1;
+  int relocalizations = 0, false_relocalizations = 0;
+  int tracked = 0, frames = 0;
+  std::vector<double> attempt_ms;  // tracker time on lost frames with an image
+};
+
+double translation_error(const StampedPose& gt, const Eigen::Isometry3d& T_cam0_world,
+                         const Eigen::Isometry3d& T_world_cam) {
+  return ((T_cam0_world * gt.T_world_cam).translation() - T_world_cam.translation()).norm();
+}
+
+Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const Args& a) {
+  SystemOptions options;
+  options.deterministic = true;
+  options.use_segmentation = a.segmentation;
+  options.vocabulary_path = a.vocabulary;
+  System system(seq.settings, SensorType::Rgbd, std::nullopt, options);
+  const Eigen::Isometry3d T_cam0_world = v.groundtruth.front().T_world_cam.inverse();
+  Outcome out;
+  out.frames = static_cast<int>(v.frames.size());
+  for (std::size_t i = 0; i < v.frames.size(); ++i) {
+    SensorFrame input = v.blank[i] ? black_copy(*v.frames[i]) : *v.frames[i];
+    input.index = i;
+    const FrameStats s = system.process(input);
+    if (s.has_pose) ++out.tracked;
+    const bool lost = s.state == TrackingState::Lost;
+    if (lost && !v.blank[i] && s.build.keypoints_after > 0) out.attempt_ms.push_back(s.tracking_ms);
+    if (lost && i >= gap_begin && out.first_lost < 0) out.first_lost = static_cast<int>(i);
+    const double err = s.has_pose ? translation_error(v.groundtruth[i], T_cam0_world, *system.last_T_world_cam()) : -1;
+    if (s.reason == "relocalized") {
+      ++out.relocalizations;
+      if (err > 0.05) ++out.false_relocalizations;
+    }
+    const bool after_loss = out.first_lost >= 0 && i >= std::max<std::size_t>(v.gap_end, out.first_lost);
+    if (s.has_pose && after_loss) {
+      if (out.frames_to_track < 0) {
+        out.frames_to_track = static_cast<int>(i) - static_cast<int>(std::max<std::size_t>(v.gap_end, out.first_lost));
+        out.how = s.reason;
+        out.error_after = err;
+      }
+      out.max_error_after = std::max(out.max_error_after, err);
+    }
+    if (a.verbose && (lost || s.reason == "relocalized") && !v.blank[i]) {
+      std::printf("    frame %zu: %s (%s) err %.3f, %d keypoints, %d matches, %d inliers, %.1f ms\n", i,
+                  lost ? "lost" : "tracked", s.reason.c_str(), err, s.build.keypoints_after, s.matches, s.inliers,
+                  s.tracking_ms);
+    }
+  }
+  system.shutdown();
+  try {
+    Trajectory gt(v.groundtruth.begin(), v.groundtruth.end());
+    out.ate = evaluate(gt, system.trajectory(), EvaluationOptions{}).ape_stats.rmse;
+  } catch (const Error&) {
+    out.ate = -1;
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return -1;
+  std::sort(v.begin(), v.end());
+  return v[(v.size() - 1) / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args a = parse(argc, argv);
+    if (!fs::is_regular_file(a.vocabulary)) throw Error("vocabulary " + a.vocabulary.string() + " not found");
+    std::vector<Sequence> sequences;
+    if (!a.sequence.empty()) {
+      sequences.push_back(load(a));
+    } else {
+      for (int seed : a.seeds) sequences.push_back(render(a, seed));
+    }
+    std::printf("%-22s %5s %5s %6s | %8s %-26s %9s %9s %8s %7s %5s\n", "sequence", "gap", "skip", "lost@",
+                "frames", "how", "err_first", "err_max", "ATE", "relocs", "false");
+    std::vector<double> all_attempts, frames_to_track, first_errors;
+    int runs = 0, within_bar = 0, false_total = 0, reloc_total = 0, never = 0;
+    for (const Sequence& seq : sequences) {
+      const auto gap = static_cast<std::size_t>(std::lround(a.gap_s * seq.fps));
+      for (double skip_s : (a.sequence.empty() ? a.skips : std::vector<double>{0.0})) {
+        const auto skip = static_cast<std::size_t>(std::lround(skip_s * seq.fps));
+        for (int g : a.gaps) {
+          const auto begin = static_cast<std::size_t>(g);
+          if (begin + gap + skip + 10 > seq.frames.size()) continue;
+          const Variant v = make_variant(seq, begin, begin + gap, skip);
+          const Outcome o = run(seq, v, begin, a);
+          ++runs;
+          all_attempts.insert(all_attempts.end(), o.attempt_ms.begin(), o.attempt_ms.end());
+          false_total += o.false_relocalizations;
+          reloc_total += o.relocalizations;
+          if (o.frames_to_track >= 0) {
+            frames_to_track.push_back(o.frames_to_track);
+            first_errors.push_back(o.error_after);
+            if (o.frames_to_track <= 10) ++within_bar;
+          } else {
+            ++never;
+          }
+          std::printf("%-22s %5zu %5zu %6d | %8d %-26s %9.4f %9.4f %8.4f %7d %5d\n", seq.name.c_str(), begin, skip,
+                      o.first_lost, o.frames_to_track, o.how.substr(0, 26).c_str(), o.error_after,
+                      o.max_error_after, o.ate, o.relocalizations, o.false_relocalizations);
+          std::fflush(stdout);
+        }
+      }
+    }
+    std::printf("\nruns %d: tracking back within 10 frames of the gap in %d, never in %d; "
+                "frames to track median %.0f max %.0f\n",
+                runs, within_bar, never, median(frames_to_track),
+                frames_to_track.empty() ? -1.0 : *std::max_element(frames_to_track.begin(), frames_to_track.end()));
+    std::printf("first pose after the loss: median error %.4f m, max %.4f m\n", median(first_errors),
+                first_errors.empty() ? -1.0 : *std::max_element(first_errors.begin(), first_errors.end()));
+    std::printf("relocalizations %d, false (> 5 cm) %d\n", reloc_total, false_total);
+    std::printf("tracker time on lost frames with an image (one relocalization attempt): median %.2f ms over %zu\n",
+                median(all_attempts), all_attempts.size());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_relocalization: %s\n", e.what());
+    return 1;
+  }
+}
