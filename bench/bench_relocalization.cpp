@@ -5,16 +5,22 @@
 // cannot bridge). Per gap position and seed it prints:
 //   frames from the first frame after the gap to the first tracked frame (bar: <= 10)
 //   how tracking came back (relocalized / wide-window search of the last map)
-//   translation error of the first pose after the loss (world frame of the run,
-//     no alignment: a wrong place shows as an offset)
-//   ATE rmse of the run (SE3-aligned)
+//   translation error of the first pose after the loss: the poses as the
+//     tracker gave them (before later loop/merge corrections), SE3-aligned to
+//     the ground truth all together (a map's small drift does not count, a
+//     pose in the wrong place does; a pose in a new map that is not merged
+//     shows as its offset)
+//   ATE rmse of the final trajectory (SE3-aligned)
 //   false relocalizations: relocalized frames whose pose is > 5 cm off
+//   maps started (atlas: after --new-map-after lost frames, default the
+//     system's one second) and merges
 // and the time of the tracker on lost frames with an image (one relocalization
 // attempt each). Deterministic mode (synchronous local mapping and loop closing).
 //
 //   build/bench/bench_relocalization [--trajectory walking_xyz] [--frames 330]
 //       [--seeds 0,1] [--gaps 60,120,180,240] [--gap 1.0] [--skip 0,2]
 //       [--width 320 --height 240] [--noise 0] [--vocabulary FILE]
+//       [--new-map-after N (-1: system default, 0: never)] [--no-verification] [--verbose]
 //   build/bench/bench_relocalization --sequence DIR [--gaps ...] [--gap S|0] ...
 //       DIR: a TUM-layout folder written by `stillslam simulate` (settings.yaml,
 //       groundtruth.txt), e.g. with --occlude T:D; --gap 0 keeps every image
@@ -57,6 +63,8 @@ struct Args {
   fs::path vocabulary = fs::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
   fs::path sequence;        // TUM folder instead of rendering
   bool segmentation = false;  // --sequence only: run with the settings' segmentation
+  int new_map_after = -1;     // SystemOptions::new_map_after_lost_frames (-1: the system's default)
+  bool no_verification = false;  // relocalization without its verification (for comparison)
   bool verbose = false;
 };
 
@@ -91,6 +99,8 @@ Args parse(int argc, char** argv) {
     else if (k == "--vocabulary") a.vocabulary = value();
     else if (k == "--sequence") a.sequence = value();
     else if (k == "--segmentation") a.segmentation = true;
+    else if (k == "--new-map-after") a.new_map_after = std::stoi(value());
+    else if (k == "--no-verification") a.no_verification = true;
     else if (k == "--verbose") a.verbose = true;
     else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_relocalization.cpp)");
   }
@@ -200,17 +210,30 @@ struct Outcome {
   int first_lost = -1;       // variant index of the first lost frame at/after the gap start
   int frames_to_track = -1;  // from the first frame after the gap to the first tracked frame
   std::string how;           // "relocalized" or the tracker's reason
-  double error_after = -1;   // translation error of that first pose (m, world frame, no alignment)
+  double error_after = -1;   // error of that first pose (m), see below
   double max_error_after = 0;  // over the rest of the run
-  double ate = -1;
+  double ate = -1;           // final trajectory (after loop/merge corrections), SE3-aligned
   int relocalizations = 0, false_relocalizations = 0;
+  int new_maps = 0, merges = 0;
   int tracked = 0, frames = 0;
   std::vector<double> attempt_ms;  // tracker time on lost frames with an image
 };
 
-double translation_error(const StampedPose& gt, const Eigen::Isometry3d& T_cam0_world,
-                         const Eigen::Isometry3d& T_world_cam) {
-  return ((T_cam0_world * gt.T_world_cam).translation() - T_world_cam.translation()).norm();
+// Errors of the poses as the tracker gave them (before later corrections),
+// after one SE3 alignment of all of them to the ground truth: a map that
+// drifted a little does not count against the relocalization, a pose in the
+// wrong place does. Keyed by variant frame index.
+std::map<std::size_t, double> online_errors(const Variant& v, const std::map<std::size_t, Eigen::Isometry3d>& poses) {
+  Trajectory gt(v.groundtruth.begin(), v.groundtruth.end()), est;
+  for (const auto& [i, T] : poses) est.push_back({v.groundtruth[i].timestamp, T});
+  std::map<std::size_t, double> out;
+  if (est.size() < 3) return out;
+  const EvaluationResult ev = evaluate(gt, est, EvaluationOptions{});
+  for (const auto& [i, T] : poses) {
+    const Eigen::Vector3d p = ev.alignment.apply(T).translation();
+    out[i] = (p - v.groundtruth[i].T_world_cam.translation()).norm();
+  }
+  return out;
 }
 
 Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const Args& a) {
@@ -218,39 +241,55 @@ Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const 
   options.deterministic = true;
   options.use_segmentation = a.segmentation;
   options.vocabulary_path = a.vocabulary;
+  options.new_map_after_lost_frames = a.new_map_after;
+  if (a.no_verification) {
+    options.relocalization.min_found_ratio = 0;
+    options.relocalization.min_supported_cells = 0;
+  }
   System system(seq.settings, SensorType::Rgbd, std::nullopt, options);
-  const Eigen::Isometry3d T_cam0_world = v.groundtruth.front().T_world_cam.inverse();
   Outcome out;
   out.frames = static_cast<int>(v.frames.size());
+  std::vector<FrameStats> stats;
+  std::map<std::size_t, Eigen::Isometry3d> poses;
   for (std::size_t i = 0; i < v.frames.size(); ++i) {
     SensorFrame input = v.blank[i] ? black_copy(*v.frames[i]) : *v.frames[i];
     input.index = i;
-    const FrameStats s = system.process(input);
+    stats.push_back(system.process(input));
+    const FrameStats& s = stats.back();
+    if (s.has_pose) poses[i] = *system.last_T_world_cam();
+    out.new_maps += s.new_map ? 1 : 0;
+    out.merges += s.merged ? 1 : 0;
+  }
+  system.shutdown();
+  const std::map<std::size_t, double> errors = online_errors(v, poses);
+  for (std::size_t i = 0; i < stats.size(); ++i) {
+    const FrameStats& s = stats[i];
     if (s.has_pose) ++out.tracked;
     const bool lost = s.state == TrackingState::Lost;
     if (lost && !v.blank[i] && s.build.keypoints_after > 0) out.attempt_ms.push_back(s.tracking_ms);
     if (lost && i >= gap_begin && out.first_lost < 0) out.first_lost = static_cast<int>(i);
-    const double err = s.has_pose ? translation_error(v.groundtruth[i], T_cam0_world, *system.last_T_world_cam()) : -1;
+    const double err = errors.count(i) ? errors.at(i) : -1;
     if (s.reason == "relocalized") {
       ++out.relocalizations;
       if (err > 0.05) ++out.false_relocalizations;
     }
-    const bool after_loss = out.first_lost >= 0 && i >= std::max<std::size_t>(v.gap_end, out.first_lost);
+    const std::size_t back_from = std::max<std::size_t>(v.gap_end, static_cast<std::size_t>(std::max(out.first_lost, 0)));
+    const bool after_loss = out.first_lost >= 0 && i >= back_from;
     if (s.has_pose && after_loss) {
       if (out.frames_to_track < 0) {
-        out.frames_to_track = static_cast<int>(i) - static_cast<int>(std::max<std::size_t>(v.gap_end, out.first_lost));
-        out.how = s.reason;
+        out.frames_to_track = static_cast<int>(i - back_from);
+        out.how = s.reason + " (map " + std::to_string(s.map_id) + ")";
         out.error_after = err;
       }
       out.max_error_after = std::max(out.max_error_after, err);
     }
-    if (a.verbose && (lost || s.reason == "relocalized") && !v.blank[i]) {
-      std::printf("    frame %zu: %s (%s) err %.3f, %d keypoints, %d matches, %d inliers, %.1f ms\n", i,
-                  lost ? "lost" : "tracked", s.reason.c_str(), err, s.build.keypoints_after, s.matches, s.inliers,
-                  s.tracking_ms);
+    if (a.verbose && (lost || s.reason == "relocalized" || s.new_map || s.merged) && !v.blank[i]) {
+      std::printf("    frame %zu: %s (%s) map %lu%s%s err %.3f, %d keypoints, %d matches, %d inliers, %.1f ms\n", i,
+                  lost ? "lost" : "tracked", s.reason.c_str(), static_cast<unsigned long>(s.map_id),
+                  s.new_map ? " NEW MAP" : "", s.merged ? " MERGED" : "", err, s.build.keypoints_after, s.matches,
+                  s.inliers, s.tracking_ms);
     }
   }
-  system.shutdown();
   try {
     Trajectory gt(v.groundtruth.begin(), v.groundtruth.end());
     out.ate = evaluate(gt, system.trajectory(), EvaluationOptions{}).ape_stats.rmse;
@@ -278,8 +317,8 @@ int main(int argc, char** argv) {
     } else {
       for (int seed : a.seeds) sequences.push_back(render(a, seed));
     }
-    std::printf("%-22s %5s %5s %6s | %8s %-26s %9s %9s %8s %7s %5s\n", "sequence", "gap", "skip", "lost@",
-                "frames", "how", "err_first", "err_max", "ATE", "relocs", "false");
+    std::printf("%-20s %4s %4s %5s | %6s %-24s %9s %9s %8s %6s %5s %4s %5s\n", "sequence", "gap", "skip", "lost@",
+                "frames", "how", "err_first", "err_max", "ATE", "relocs", "false", "maps", "merge");
     std::vector<double> all_attempts, frames_to_track, first_errors;
     int runs = 0, within_bar = 0, false_total = 0, reloc_total = 0, never = 0;
     for (const Sequence& seq : sequences) {
@@ -302,9 +341,9 @@ int main(int argc, char** argv) {
           } else {
             ++never;
           }
-          std::printf("%-22s %5zu %5zu %6d | %8d %-26s %9.4f %9.4f %8.4f %7d %5d\n", seq.name.c_str(), begin, skip,
-                      o.first_lost, o.frames_to_track, o.how.substr(0, 26).c_str(), o.error_after,
-                      o.max_error_after, o.ate, o.relocalizations, o.false_relocalizations);
+          std::printf("%-20s %4zu %4zu %5d | %6d %-24s %9.4f %9.4f %8.4f %6d %5d %4d %5d\n", seq.name.c_str(), begin,
+                      skip, o.first_lost, o.frames_to_track, o.how.substr(0, 24).c_str(), o.error_after,
+                      o.max_error_after, o.ate, o.relocalizations, o.false_relocalizations, o.new_maps, o.merges);
           std::fflush(stdout);
         }
       }
