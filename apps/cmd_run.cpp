@@ -5,6 +5,9 @@
 // Atlas: trajectory.txt holds the frames of every map, each in its own map's
 // frame until that map is merged; DIR/trajectory_maps.txt is the same in TUM
 // with a 9th column, the map id (readers of TUM ignore it).
+// --save-map FILE writes every map at the end (also after Ctrl-C or an input
+// error); --load-map FILE starts from a saved map (relocalizing first), and
+// with --localization only tracks against it (no keyframes, no mapping).
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -34,6 +37,8 @@ namespace fs = std::filesystem;
 struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
+  std::string save_map, load_map;
+  bool localization = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
 };
@@ -98,6 +103,9 @@ void run(const RunArgs& args) {
   options.system.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
   options.system.loop_closing = !args.no_loop_closing;
   options.system.new_map_after_lost_frames = args.new_map_after_lost;
+  options.system.load_map = args.load_map;
+  options.system.localization_only = args.localization;
+  options.save_map = args.save_map;
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
@@ -164,6 +172,14 @@ void run(const RunArgs& args) {
   stats["loop_closing_stats"] = to_json(result.loop_closer);
   stats["summary"]["relocalizations"] = result.relocalizations;
   if (result.error) stats["summary"]["error"] = *result.error;
+  if (!args.load_map.empty()) stats["load_map"] = args.load_map;
+  stats["localization_only"] = args.localization;
+  if (result.map_file) {
+    stats["map_file"] = {{"path", args.save_map}, {"bytes", result.map_file->bytes},
+                         {"maps", result.map_file->maps}, {"keyframes", result.map_file->keyframes},
+                         {"map_points", result.map_file->map_points}, {"save_ms", result.save_map_ms}};
+  }
+  if (result.map_file_error) stats["map_file_error"] = *result.map_file_error;
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
   stats["frames"] = std::move(frames);
@@ -188,7 +204,13 @@ void run(const RunArgs& args) {
   }
   write_json(out_dir / "stats.json", stats);
   std::cout << "wrote " << (out_dir / "trajectory.txt").string() << ", keyframes.txt, stats.json\n";
+  if (result.map_file) {
+    std::cout << "saved map " << args.save_map << ": " << result.map_file->maps << " maps, "
+              << result.map_file->keyframes << " keyframes, " << result.map_file->map_points << " points, "
+              << static_cast<double>(result.map_file->bytes) / 1e6 << " MB, " << result.save_map_ms << " ms\n";
+  }
   if (result.error) throw Error(*result.error + " (trajectory so far written to " + out_dir.string() + ")");
+  if (result.map_file_error) throw Error(*result.map_file_error);
 }
 
 }  // namespace
@@ -211,6 +233,16 @@ void add_run_command(CLI::App& app) {
                 "no loop detection/correction (keyframes are still indexed for relocalization)");
   cmd->add_option("--new-map-after-lost", args->new_map_after_lost,
                   "start a new map after N frames lost (default: 1 s of frames with a vocabulary; 0: never)");
+  cmd->add_option("--save-map", args->save_map,
+                  "save every map to FILE at the end (also when the run stops early, e.g. Ctrl-C)");
+  CLI::Option* load = cmd->add_option("--load-map", args->load_map,
+                                      "start from a map saved with --save-map (needs the same vocabulary, sensor "
+                                      "and calibration); tracking relocalizes in it first")
+                          ->check(CLI::ExistingFile);
+  cmd->add_flag("--localization", args->localization,
+                "localization only: track against the loaded map without changing it (no keyframes, no "
+                "mapping, no loop closing)")
+      ->needs(load);
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->callback([args] { run(*args); });

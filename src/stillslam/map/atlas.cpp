@@ -84,6 +84,21 @@ void Atlas::remove_map(std::uint64_t id) {
   maps_.erase(it);
 }
 
+void Atlas::replace_maps(std::vector<std::unique_ptr<Map>> maps, std::uint64_t active, std::uint64_t next_map_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (maps.empty()) throw Error("atlas: no maps to load");
+  if (std::any_of(maps_.begin(), maps_.end(), [](const auto& m) { return !m->empty(); })) {
+    throw Error("atlas: maps can only be loaded into an empty atlas");
+  }
+  std::sort(maps.begin(), maps.end(), [](const auto& a, const auto& b) { return a->id() < b->id(); });
+  if (std::none_of(maps.begin(), maps.end(), [active](const auto& m) { return m->id() == active; })) {
+    throw Error("atlas: the active map " + std::to_string(active) + " is not among the loaded maps");
+  }
+  maps_ = std::move(maps);
+  active_ = active;
+  next_map_id_ = std::max(next_map_id, maps_.back()->id() + 1);
+}
+
 std::optional<std::uint64_t> Atlas::map_of_keyframe(std::uint64_t keyframe_id) const {
   for (Map* m : maps()) {
     std::lock_guard<std::mutex> lock(m->update_mutex());

@@ -49,6 +49,12 @@ class Atlas {
   // must be new; later maps get larger ids.
   Map& add_map(std::unique_ptr<Map> map);
 
+  // Loading a saved atlas (map/map_file.h): `maps` (unique ids, built with
+  // id_counters()) replace the current maps, which must all be empty; map
+  // `active` becomes active; later maps get ids >= next_map_id. Error when
+  // `maps` is empty, a current map is not, or `active` is not among them.
+  void replace_maps(std::vector<std::unique_ptr<Map>> maps, std::uint64_t active, std::uint64_t next_map_id);
+
   const std::shared_ptr<MapIdCounters>& id_counters() const { return ids_; }
 
   // The map holding keyframe `id` (also a culled one), or nullopt. Takes each

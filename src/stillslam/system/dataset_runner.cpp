@@ -13,15 +13,16 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
   RunResult out;
   Stopwatch wall;
   System system(settings, dataset.sensor(), dataset.rectified_stereo(), options.system);
+  const std::size_t first = std::min(options.first_frame, dataset.size());
   std::size_t n = dataset.size();
-  if (options.max_frames) n = std::min(n, *options.max_frames);
+  if (options.max_frames) n = std::min(n, first + *options.max_frames);
 
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
-  if (n > 0) next = std::async(std::launch::async, load, 0);
-  const double t0 = n > 0 ? dataset.timestamp(0) : 0.0;
+  if (n > first) next = std::async(std::launch::async, load, first);
+  const double t0 = n > first ? dataset.timestamp(first) : 0.0;
   try {
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = first; i < n; ++i) {
       SensorFrame frame = next.get();
       if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
       if (options.stop != nullptr && options.stop->load()) {
@@ -52,6 +53,15 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     }
   }
   system.shutdown();
+  if (!options.save_map.empty()) {
+    try {
+      Stopwatch save;
+      out.map_file = system.save_map(options.save_map);
+      out.save_map_ms = save.elapsed_ms();
+    } catch (const Error& e) {
+      out.map_file_error = e.what();
+    }
+  }
   for (const MapPose& p : system.trajectory_with_maps()) {
     out.trajectory.push_back(p.pose);
     out.trajectory_map_ids.push_back(p.map_id);

@@ -4,6 +4,7 @@
 // callback (live trajectory, progress), stops on request, and always returns
 // what it has (an input error ends the run but keeps the trajectory so far).
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -17,6 +18,10 @@ namespace stillslam {
 struct RunOptions {
   SystemOptions system;
   std::optional<std::size_t> max_frames;
+  std::size_t first_frame = 0;  // start this many frames into the dataset
+  // Save every map here at the end (System::save_map), also when the run
+  // stopped early (interrupted, input error).
+  std::filesystem::path save_map;
   // Pace frames by their timestamps; frames whose time has passed while the
   // system was busy are dropped, as with a live camera.
   bool realtime = false;
@@ -41,6 +46,9 @@ struct RunResult {
   std::size_t maps = 1;           // at the end (after merges)
   int new_maps = 0;               // started because tracking stayed lost
   std::vector<MapMergeStats> merges;
+  std::optional<MapFileStats> map_file;   // RunOptions::save_map written
+  std::optional<std::string> map_file_error;  // or why not
+  double save_map_ms = 0;
 };
 
 // Construction errors (bad settings for this sensor, model) throw; errors

@@ -95,8 +95,12 @@ LoopCloserStats operator+(LoopCloserStats a, const LoopCloserStats& b) {
 
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
-    : options_(std::move(options)) {
+    : options_(std::move(options)), sensor_(sensor) {
   setup_ = make_camera_setup(settings, sensor, rectified);
+  if (options_.localization_only && options_.load_map.empty()) {
+    throw Error("localization-only mode needs a map to localize in: pass --load-map FILE (written by "
+                "`stillslam run --save-map FILE`)");
+  }
   if (options_.use_segmentation && settings.segmentation.enabled) {
     auto segmenter = std::make_unique<YoloSegmenter>(settings.segmentation);
     segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
@@ -113,7 +117,7 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
     vocabulary_ = std::make_shared<const Vocabulary>(Vocabulary::load(options_.vocabulary_path));
     recognizer_ = std::make_unique<PlaceRecognizer>(vocabulary_, options_.place_recognition);
     relocalizer_ = Relocalizer(options_.relocalization);
-    if (options_.map_merging) {
+    if (options_.map_merging && !options_.localization_only) {
       merge_detector_ = std::make_unique<MergeDetector>(*recognizer_, options_.merger.detector);
     }
   }
@@ -121,6 +125,8 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   new_map_after_lost_frames_ = options_.new_map_after_lost_frames >= 0 ? options_.new_map_after_lost_frames
                                : recognizer_                            ? fps_frames
                                                                         : 0;
+  if (options_.localization_only) new_map_after_lost_frames_ = 0;
+  if (!options_.load_map.empty()) load_maps(options_.load_map);
 
   mapper_options_ = options_.mapper;
   mapper_options_.threaded = !options_.deterministic;
@@ -169,7 +175,45 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   }
   TrackerOptions tracker_options = options_.tracker;
   if (settings.fps > 0) tracker_options.max_frames_between_keyframes = static_cast<int>(settings.fps);
+  tracker_options.localization_only = options_.localization_only;
   tracker_ = std::make_unique<Tracker>(atlas_->active_map(), tracker_options, std::move(link));
+  if (!options_.load_map.empty()) tracker_->localize_in(atlas_->active_map());
+}
+
+MapFileContext System::map_file_context() const {
+  MapFileContext context;
+  context.sensor = to_string(sensor_);
+  context.setup = setup_;
+  context.vocabulary_checksum = vocabulary_ ? vocabulary_fingerprint(*vocabulary_) : 0;
+  return context;
+}
+
+void System::load_maps(const std::filesystem::path& path) {
+  if (!recognizer_) {
+    throw Error(path.string() + ": starting from a saved map needs the vocabulary it was saved with (tracking "
+                "relocalizes in it first); pass --vocabulary FILE");
+  }
+  Stopwatch time;
+  MapFileContents contents = load_map_file(path, map_file_context(), atlas_->id_counters());
+  std::vector<std::unique_ptr<Map>> maps;
+  std::size_t keyframes = 0, points = 0;
+  for (LoadedMap& loaded : contents.maps) {
+    // Bag of words is not stored: every keyframe is described again.
+    for (const KeyFramePtr& kf : loaded.map->keyframes()) recognizer_->add(*kf);
+    keyframes += loaded.map->num_keyframes();
+    points += loaded.map->num_map_points();
+    maps.push_back(std::move(loaded.map));
+  }
+  atlas_->replace_maps(std::move(maps), contents.active_map_id, contents.next_map_id);
+  spdlog::info("loaded {}: {} maps, {} keyframes, {} map points ({:.0f} ms); active map {}", path.string(),
+               contents.maps.size(), keyframes, points, time.elapsed_ms(), contents.active_map_id);
+}
+
+MapFileStats System::save_map(const std::filesystem::path& path) {
+  shutdown();  // no thread changes a map while it is written
+  std::vector<MapToSave> maps;
+  for (const Map* map : atlas_->maps()) maps.push_back({map, {}});
+  return save_map_file(path, map_file_context(), maps, atlas_->active_map_id(), atlas_->maps_created());
 }
 
 System::~System() { shutdown(); }

@@ -33,6 +33,7 @@
 #include "stillslam/loop/place_recognizer.h"
 #include "stillslam/map/atlas.h"
 #include "stillslam/map/map.h"
+#include "stillslam/map/map_file.h"
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/system/frame_stats.h"
@@ -66,6 +67,15 @@ struct SystemOptions {
   // With a vocabulary: merge maps when a place is recognized across them.
   bool map_merging = true;
   MapMergerOptions merger;
+  // A map file (map/map_file.h, System::save_map) to start from: its maps
+  // replace the empty atlas, their keyframes are indexed for place
+  // recognition, and tracking starts lost, relocalizing in the active map
+  // (the first frame need not be at the map's origin). Needs the vocabulary,
+  // sensor and calibration the map was saved with (else Error).
+  std::filesystem::path load_map;
+  // Track against the loaded map without changing it: no keyframes, map
+  // points, local mapping, loop closing, new maps or merges. Needs load_map.
+  bool localization_only = false;
 };
 
 // A frame's pose with the id of the map it is expressed in.
@@ -124,6 +134,12 @@ class System {
   int new_maps_started() const { return new_maps_started_; }
   const std::vector<MapMergeStats>& merges() const { return merges_; }
   const CameraSetup& camera_setup() const { return *setup_; }
+  // What a map file of this system records and must match on load.
+  MapFileContext map_file_context() const;
+  // Saves every map of the atlas (map/map_file.h). Stops the threads first
+  // (shutdown()): call it at the end of a run. Throws Error when the file
+  // can't be written.
+  MapFileStats save_map(const std::filesystem::path& path);
   bool segmentation_enabled() const { return segmentation_ != nullptr; }
 
  private:
@@ -139,12 +155,15 @@ class System {
   // reaches loop closing and the place-recognition index); keeps their stats.
   void stop_map_threads();
   void start_new_map();
+  // SystemOptions::load_map: the file's maps into the (empty) atlas.
+  void load_maps(const std::filesystem::path& path);
   // Looks for the keyframes local mapping finished in the other maps; merges
   // on a recognized place.
   void detect_and_merge();
   bool merge_into(Map& target, const LoopDetection& detection);
 
   SystemOptions options_;
+  SensorType sensor_;
   std::shared_ptr<const CameraSetup> setup_;
   std::unique_ptr<SegmentationWorker> segmentation_;
   std::unique_ptr<FrameBuilder> builder_;

@@ -35,10 +35,20 @@ void Tracker::start_new_map(Map& map) {
 
 void Tracker::switch_map(Map& map) { map_ = &map; }
 
+void Tracker::localize_in(Map& map) {
+  start_new_map(map);
+  state_ = TrackingState::Lost;
+}
+
 TrackingResult Tracker::track(Frame& frame) {
   std::lock_guard<std::mutex> lock(map_->update_mutex());
   TrackingResult result;
   if (state_ == TrackingState::NotInitialized) {
+    if (options_.localization_only) {
+      result.state = state_;
+      result.reason = "localization only: no map to track";
+      return result;
+    }
     if (!initialize(frame)) {
       result.state = state_;
       result.reason = "waiting for a frame with " + std::to_string(options_.init_min_keypoints) +
@@ -78,7 +88,7 @@ TrackingResult Tracker::track(Frame& frame) {
     } else {
       velocity_.reset();
     }
-    if (need_new_keyframe(frame, result.inliers)) {
+    if (!options_.localization_only && need_new_keyframe(frame, result.inliers)) {
       create_keyframe(frame);
       result.new_keyframe = true;
     }
@@ -213,9 +223,10 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
   return true;
 }
 
-// The last keyframe, or its closest ancestor if local mapping culled it.
+// The last keyframe, or its closest ancestor if local mapping culled it
+// (localizing in a loaded map, which gets no new keyframes: the reference).
 KeyFrame* Tracker::anchor_keyframe() const {
-  KeyFrame* kf = last_keyframe_.get();
+  KeyFrame* kf = last_keyframe_ ? last_keyframe_.get() : reference_keyframe_.get();
   while (kf != nullptr && kf->is_bad()) kf = kf->parent();
   return kf;
 }

@@ -55,6 +55,9 @@ class Tracker {
   // Atlas merge: the tracker's keyframes now live in `map` (moved there with
   // corrected poses); tracking continues without a break.
   void switch_map(Map& map);
+  // A map that already has keyframes (a loaded one): forget the current
+  // state and start lost, so the next frames relocalize in it and then track.
+  void localize_in(Map& map);
   Map& map() const { return *map_; }
 
   TrackingState state() const { return state_; }

@@ -17,6 +17,9 @@ struct TrackerOptions {
   int close_points_untracked_min = 70; // ...and this many close points are not
   int new_keyframe_points = 100;       // points created from depth per keyframe (beyond close ones)
   PoseOptimizerOptions pose;
+  // Track against the map without changing it (a loaded map): no keyframes,
+  // no map points; never initializes a map of its own.
+  bool localization_only = false;
 };
 
 }  // namespace stillslam
