@@ -52,19 +52,21 @@ LoopRun run_loop(bool threaded, bool global_ba) {
 TEST(LoopCloser, PoseGraphRemovesTheDrift) {
   const LoopRun run = run_loop(false, false);
   ASSERT_EQ(run.loops.size(), 1u);
-  EXPECT_EQ(run.loops[0].query_id, 34u);
+  EXPECT_EQ(run.loops[0].query_id, 33u);  // the first candidate, confirmed by its neighbours
   EXPECT_LE(run.loops[0].loop_id, 4u);
   EXPECT_GT(run.loops[0].correction.fused_points, 200);
   EXPECT_GT(run.loops[0].correction.new_loop_links, 0);
-  EXPECT_EQ(run.loops[0].correction.graph_nodes, 35);
-  EXPECT_EQ(run.stats.keyframes, 35);  // stopped at the closure
+  EXPECT_EQ(run.loops[0].correction.graph_nodes, 34);
+  EXPECT_EQ(run.stats.keyframes, 34);  // stopped at the closure
   EXPECT_EQ(run.stats.global_bundle_adjustments, 0);
-  // Odometry bias of 8 degrees and 5 cm per turn: 0.135 m / 7.6 degrees
-  // before, 0.012 m / 0.39 degrees after (the pose graph alone).
+  // Odometry bias of 8 degrees and 5 cm per turn: 0.133 m / 7.3 degrees
+  // before, 0.015 m / 0.57 degrees after (the pose graph alone; closed at
+  // keyframe 33, whose loop edge spans less overlap than keyframe 34's did
+  // with temporal consistency only: 0.012 m / 0.39 degrees).
   EXPECT_GT(run.error_before, 0.12);
   EXPECT_GT(run.rotation_before, 7.0);
   EXPECT_LT(run.error_after, 0.02);
-  EXPECT_LT(run.rotation_after, 0.5);
+  EXPECT_LT(run.rotation_after, 0.7);
   std::printf("pose graph: max position error %.3f -> %.3f m, rotation %.2f -> %.2f deg\n", run.error_before,
               run.error_after, run.rotation_before, run.rotation_after);
 }
@@ -72,7 +74,7 @@ TEST(LoopCloser, PoseGraphRemovesTheDrift) {
 TEST(LoopCloser, GlobalBundleAdjustmentInTheBackgroundKeepsTheCorrection) {
   const LoopRun run = run_loop(true, true);
   ASSERT_EQ(run.loops.size(), 1u);
-  EXPECT_EQ(run.loops[0].query_id, 34u);
+  EXPECT_EQ(run.loops[0].query_id, 33u);
   EXPECT_EQ(run.stats.global_bundle_adjustments, 1);
   EXPECT_EQ(run.stats.global_bundle_adjustments_aborted, 0);
   // Exact measurements: global BA recovers the truth.

@@ -1,6 +1,8 @@
-// LoopDetector on the synthetic circle: the revisit is found only after the
-// candidate group has been consistent over 3 consecutive keyframes, an
-// interruption resets the count, and the SE3 it returns removes the drift.
+// LoopDetector on the synthetic circle: with temporal consistency alone the
+// revisit is found only after the candidate group has been consistent over 3
+// consecutive keyframes, and an interruption resets the count; with covisible
+// confirmation (the default) the first candidate keyframe is accepted when
+// its neighbours see the loop too. The SE3 it returns removes the drift.
 #include <gtest/gtest.h>
 
 #include "loop/loop_scene.h"
@@ -27,8 +29,14 @@ class LoopDetectorTest : public ::testing::Test {
   std::vector<KeyFramePtr> keyframes_;
 };
 
+LoopDetectorOptions temporal_consistency_only() {
+  LoopDetectorOptions o;
+  o.confirmation_neighbours = 0;
+  return o;
+}
+
 TEST_F(LoopDetectorTest, FindsTheRevisitAfterThreeConsistentKeyframes) {
-  LoopDetector detector(recognizer_);
+  LoopDetector detector(recognizer_, temporal_consistency_only());
   std::optional<LoopDetection> loop;
   int found_at = -1;
   for (int i = 0; i < kKeyframes && !loop; ++i) {
@@ -54,7 +62,7 @@ TEST_F(LoopDetectorTest, FindsTheRevisitAfterThreeConsistentKeyframes) {
 }
 
 TEST_F(LoopDetectorTest, InterruptedConsistencyIsRejected) {
-  LoopDetector detector(recognizer_);
+  LoopDetector detector(recognizer_, temporal_consistency_only());
   for (int i = 0; i <= 32; ++i) ASSERT_FALSE(feed(detector, i)) << i;  // 32: first candidate
   // Keyframe 20 again: its place was visited once, so no candidate group
   // survives and the count restarts.
@@ -62,6 +70,41 @@ TEST_F(LoopDetectorTest, InterruptedConsistencyIsRejected) {
   EXPECT_FALSE(feed(detector, 33));
   EXPECT_FALSE(feed(detector, 34));  // only 2 consecutive now
   EXPECT_TRUE(feed(detector, 35));
+}
+
+TEST_F(LoopDetectorTest, CovisibleKeyframesConfirmTheFirstCandidate) {
+  LoopDetector detector(recognizer_);
+  std::optional<LoopDetection> loop;
+  int found_at = -1;
+  for (int i = 0; i < kKeyframes && !loop; ++i) {
+    loop = feed(detector, i);
+    if (loop) found_at = i;
+  }
+  ASSERT_TRUE(loop);
+  // Keyframe 32, the first candidate: its two previous neighbours, moved by
+  // the same correction, match the loop's points.
+  EXPECT_EQ(found_at, 32);
+  EXPECT_GE(loop->confirmations, 2);
+  EXPECT_LE(loop->loop->id(), 2u);
+  EXPECT_GE(loop->inliers, 100);
+  const Eigen::Isometry3d truth = scene_.true_T_world_cam(found_at);
+  const double corrected_error = (loop->T_world_query_corrected.translation() - truth.translation()).norm();
+  const double drifted_error = (keyframes_[32]->camera_center() - truth.translation()).norm();
+  std::printf("confirmed by %d neighbours, %d inliers; query position error %.3f -> %.4f m\n", loop->confirmations,
+              loop->inliers, drifted_error, corrected_error);
+  EXPECT_GT(drifted_error, 0.1);
+  EXPECT_LT(corrected_error, 0.01);
+}
+
+TEST_F(LoopDetectorTest, UnconfirmedCandidatesWaitForTemporalConsistency) {
+  LoopDetectorOptions options;
+  options.min_confirmation_matches = 100000;  // no neighbour can confirm
+  LoopDetector detector(recognizer_, options);
+  int found_at = -1;
+  for (int i = 0; i < kKeyframes && found_at < 0; ++i) {
+    if (feed(detector, i)) found_at = i;
+  }
+  EXPECT_EQ(found_at, 34);  // as with temporal consistency only
 }
 
 TEST_F(LoopDetectorTest, CandidateGroupsMustOverlapToCount) {

@@ -1,5 +1,7 @@
 #include "stillslam/loop/loop_detector.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <map>
 #include <unordered_map>
@@ -61,6 +63,7 @@ LoopDetector::LoopDetector(const PlaceRecognizer& recognizer, LoopDetectorOption
 void LoopDetector::loop_closed(std::uint64_t query_id) {
   last_loop_id_ = query_id;
   groups_.clear();
+  candidate_counts_.clear();
 }
 
 std::vector<KeyFramePtr> LoopDetector::candidates(const Map& map, const KeyFrame& query) const {
@@ -111,7 +114,10 @@ std::vector<KeyFramePtr> LoopDetector::consistent_candidates(const std::vector<K
   std::vector<ConsistentGroup> current;
   std::vector<KeyFramePtr> enough;
   std::vector<bool> previous_extended(groups_.size(), false);
+  candidate_counts_.clear();
   for (const KeyFramePtr& candidate : candidates) {
+    int& best_count = candidate_counts_[candidate->id()];
+    best_count = 1;
     ConsistentGroup group;
     group.keyframes.insert(candidate->id());
     for (KeyFrame* n : candidate->covisibles()) group.keyframes.insert(n->id());
@@ -123,6 +129,7 @@ std::vector<KeyFramePtr> LoopDetector::consistent_candidates(const std::vector<K
       if (!overlaps) continue;
       consistent_for_some = true;
       const int count = groups_[g].count + 1;
+      best_count = std::max(best_count, count);
       if (!previous_extended[g]) {
         current.push_back({group.keyframes, count});
         previous_extended[g] = true;
@@ -149,12 +156,57 @@ std::optional<LoopDetection> LoopDetector::detect(const Map& map, const KeyFrame
   }
   const std::vector<KeyFramePtr> found = candidates(map, query);
   if (found.empty()) {
+    spdlog::debug("loop detection, keyframe {}: no BoW candidate", query.id());
     groups_.clear();
     return std::nullopt;
   }
   const std::vector<KeyFramePtr> consistent = consistent_candidates(found);
-  if (consistent.empty()) return std::nullopt;
-  return verify(query, consistent);
+  spdlog::debug("loop detection, keyframe {}: {} BoW candidates (best {}), {} consistent", query.id(), found.size(),
+                found.front()->id(), consistent.size());
+  if (!consistent.empty()) {
+    if (auto d = verify(query, consistent)) return d;
+  }
+  if (options_.confirmation_neighbours == 0) return std::nullopt;
+  std::vector<KeyFramePtr> others;
+  for (const KeyFramePtr& c : found) {
+    if (std::find(consistent.begin(), consistent.end(), c) == consistent.end()) others.push_back(c);
+  }
+  return verify_confirmed(query, others);
+}
+
+std::optional<LoopDetection> LoopDetector::verify_confirmed(const KeyFrame& query,
+                                                            const std::vector<KeyFramePtr>& candidates) const {
+  for (const KeyFramePtr& candidate : candidates) {
+    std::optional<LoopDetection> d = verify(query, {candidate});
+    if (!d) continue;
+    const auto count = candidate_counts_.find(candidate->id());
+    const int needed = options_.consistency_threshold - (count != candidate_counts_.end() ? count->second : 1);
+    d->confirmations = count_confirmations(*d);
+    spdlog::debug("loop candidate {} for {}: confirmed by {} covisible keyframes (need {})", candidate->id(),
+                  query.id(), d->confirmations, needed);
+    if (d->confirmations >= needed) return d;
+  }
+  return std::nullopt;
+}
+
+int LoopDetector::count_confirmations(const LoopDetection& detection) const {
+  // World correction of the drifted side: T_world_new = C * T_world_old.
+  const Eigen::Isometry3d C = detection.T_world_query_corrected * detection.query->T_cam_world();
+  int confirmed = 0;
+  for (KeyFrame* k : detection.query->best_covisibles(options_.confirmation_neighbours)) {
+    if (k->is_bad() || k == detection.loop.get()) continue;
+    const Eigen::Isometry3d T_cam_world = k->T_cam_world() * C.inverse();
+    std::vector<bool> taken(k->size(), false);
+    int matches = 0;
+    for (const MapPointPtr& mp : detection.loop_points) {
+      const std::ptrdiff_t j = match_projection(*k, T_cam_world, *mp, options_.projection_window);
+      if (j < 0 || taken[static_cast<std::size_t>(j)]) continue;
+      taken[static_cast<std::size_t>(j)] = true;
+      ++matches;
+    }
+    if (matches >= options_.min_confirmation_matches) ++confirmed;
+  }
+  return confirmed;
 }
 
 std::optional<LoopDetection> LoopDetector::verify(const KeyFrame& query,
@@ -179,7 +231,10 @@ std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, con
   if (q.slot.empty() || c.slot.empty()) return std::nullopt;
   const std::vector<cv::DMatch> matches =
       match_by_direct_index(q.descriptors, q.groups, c.descriptors, c.groups, options_.bow_matching);
-  if (static_cast<int>(matches.size()) < options_.min_bow_matches) return std::nullopt;
+  if (static_cast<int>(matches.size()) < options_.min_bow_matches) {
+    spdlog::debug("loop candidate {} for {}: {} BoW matches", candidate->id(), query.id(), matches.size());
+    return std::nullopt;
+  }
 
   // SE3 between the two cameras from their own measurements.
   std::vector<Eigen::Vector3d> src, dst;
@@ -198,7 +253,10 @@ std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, con
   }
   if (static_cast<int>(src.size()) < options_.min_bow_matches) return std::nullopt;
   const AlignmentResult a = align_ransac(src, dst, options_.alignment);
-  if (!a.success) return std::nullopt;
+  if (!a.success) {
+    spdlog::debug("loop candidate {} for {}: no SE3 from {} 3D-3D matches", candidate->id(), query.id(), src.size());
+    return std::nullopt;
+  }
   Eigen::Isometry3d T_cam_world = a.S_dst_src.rigid().inverse();
 
   // Guided search of the loop keyframe's local map with the corrected pose.
@@ -246,9 +304,15 @@ std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, con
     observations.push_back(o);
     index.push_back(i);
   }
-  if (static_cast<int>(observations.size()) < options_.min_inliers) return std::nullopt;
-  const PoseOptimizationResult r = optimize_pose(setup.camera, T_cam_world, observations);
-  if (r.num_inliers < options_.min_inliers) return std::nullopt;
+  const PoseOptimizationResult r = static_cast<int>(observations.size()) < options_.min_inliers
+                                         ? PoseOptimizationResult{}
+                                         : optimize_pose(setup.camera, T_cam_world, observations);
+  spdlog::debug("loop candidate {} for {}: {} BoW matches, {} 3D-3D ({} RANSAC inliers), {} after guided search, {} "
+                "inliers", candidate->id(), query.id(), matches.size(), src.size(),
+                std::count(a.inlier.begin(), a.inlier.end(), true), observations.size(), r.num_inliers);
+  if (static_cast<int>(observations.size()) < options_.min_inliers || r.num_inliers < options_.min_inliers) {
+    return std::nullopt;
+  }
   for (std::size_t k = 0; k < index.size(); ++k) {
     if (!r.inlier[k]) d.matched_points[index[k]] = nullptr;
   }

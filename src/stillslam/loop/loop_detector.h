@@ -11,10 +11,17 @@
 //     map points, SE3 by 3D-3D alignment in RANSAC (depth unprojections),
 //     guided search of the candidate's local map with the corrected pose and
 //     a pose optimization that must keep enough inliers.
+// Waiting for consecutive keyframes costs a loop that is only briefly
+// revisited (keyframes come every ~20 degrees of a turn): as in ORB-SLAM3, a
+// candidate that is not consistent yet is still verified, and accepted when
+// the query's covisible keyframes, moved by the same correction, also see the
+// loop's map points: keyframes in a row that found the candidate's group
+// (the query included) + confirming neighbours >= consistency_threshold.
 // The caller holds the map's update mutex for every call.
 #include <Eigen/Geometry>
 #include <optional>
 #include <set>
+#include <unordered_map>
 #include <vector>
 
 #include "stillslam/features/descriptor_matcher.h"
@@ -39,6 +46,11 @@ struct LoopDetectorOptions {
   AlignmentRansacOptions alignment{300, 0.05, 0.995, 20, false, 7};
   float projection_window = 10.f;  // pixels at level 0
   int min_inliers = 40;            // after pose optimization on all matches
+  // Covisible confirmation (0 = temporal consistency only): the query's best
+  // covisible keyframes checked, and loop points a neighbour must match by
+  // projection (ORB-SLAM3: 10 neighbours, 30 matches).
+  std::size_t confirmation_neighbours = 10;
+  int min_confirmation_matches = 30;
 };
 
 // An accepted loop: the query keyframe seen from the loop keyframe's map.
@@ -52,6 +64,9 @@ struct LoopDetection {
   // The loop keyframe's and its covisibles' map points (to fuse).
   std::vector<MapPointPtr> loop_points;
   int inliers = 0;
+  // Covisible keyframes of the query that confirmed the loop (0 when it was
+  // accepted by temporal consistency without checking them).
+  int confirmations = 0;
 };
 
 class LoopDetector {
@@ -68,6 +83,13 @@ class LoopDetector {
   std::vector<KeyFramePtr> consistent_candidates(const std::vector<KeyFramePtr>& candidates);
   // Step 3: the first candidate that passes the geometric checks.
   std::optional<LoopDetection> verify(const KeyFrame& query, const std::vector<KeyFramePtr>& candidates) const;
+  // Step 3 for candidates that are not consistent yet: geometric checks, then
+  // covisible confirmation (the first candidate that passes both). Uses the
+  // consistency counts of the last consistent_candidates() call.
+  std::optional<LoopDetection> verify_confirmed(const KeyFrame& query, const std::vector<KeyFramePtr>& candidates) const;
+  // How many of the query's best covisible keyframes, moved by the detection's
+  // correction, match at least min_confirmation_matches loop points.
+  int count_confirmations(const LoopDetection& detection) const;
 
   // Called after a loop is closed: resets consistency and starts the gap.
   void loop_closed(std::uint64_t query_id);
@@ -83,6 +105,9 @@ class LoopDetector {
   const PlaceRecognizer& recognizer_;
   LoopDetectorOptions options_;
   std::vector<ConsistentGroup> groups_;
+  // Keyframes in a row (this one included) that found each of this
+  // keyframe's candidates' groups, from the last consistent_candidates().
+  std::unordered_map<std::uint64_t, int> candidate_counts_;
   std::optional<std::uint64_t> last_loop_id_;
 };
 
