@@ -130,7 +130,8 @@ void run(const RunArgs& args) {
   spdlog::info("run: {} frames of {} ({}), segmentation {}, relocalization {}, loop closing {}", total, args.input,
                to_string(dataset->sensor()), options.system.use_segmentation && settings.segmentation.enabled ? "on" : "off",
                options.system.vocabulary_path.empty() ? "off" : "on",
-               options.system.vocabulary_path.empty() || !options.system.loop_closing ? "off" : "on");
+               options.system.vocabulary_path.empty() || !options.system.loop_closing || args.localization ? "off" : "on");
+  if (args.localization) spdlog::info("localization only in {}: no keyframes, no mapping", args.load_map);
   const RunResult result = run_dataset(settings, *dataset, options);
   if (tty) std::fprintf(stderr, "\n");
 

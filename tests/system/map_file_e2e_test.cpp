@@ -4,10 +4,14 @@
 // map. Every localized pose must be within 1 cm of the mapping run's.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "io/temp_dir.h"
+#include "stillslam/sim/sequence_writer.h"
 #include "stillslam/core/error.h"
 #include "stillslam/system/system.h"
 #include "system/sim_sequence.h"
@@ -132,6 +136,58 @@ TEST_F(MapFileEndToEnd, LoadingNeedsAMapAndTheVocabulary) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("room.map: not a stillslam map file"), std::string::npos) << e.what();
   }
+}
+
+// Through the binary: --save-map writes the map, --load-map --localization
+// tracks the same frames against it without creating keyframes.
+TEST(MapFileCommand, SaveThenLocalize) {
+  namespace fs = std::filesystem;
+  const fs::path binary(STILLSLAM_BINARY);
+  if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
+  if (!fs::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
+  test::TempDir dir;
+  sim::SimulationOptions opts;
+  opts.trajectory = "walking_xyz";
+  opts.frames = 40;
+  opts.width = 320;
+  opts.height = 240;
+  opts.no_people = true;
+  opts.supersampling = 1;
+  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
+  const sim::SequenceSummary seq = sim::write_sequence(dir.path() / "seq", opts);
+  const std::string common = binary.string() + " run --config " + seq.settings.string() + " --input " +
+                             (dir.path() / "seq").string() + " --no-segmentation --deterministic --vocabulary " +
+                             vocabulary_file().string();
+  const fs::path map_file = dir.path() / "seq.map";
+  const fs::path log = dir.path() / "log.txt";
+  ASSERT_EQ(std::system((common + " --output " + (dir.path() / "mapping").string() + " --save-map " +
+                         map_file.string() + " > " + log.string() + " 2>&1")
+                            .c_str()),
+            0)
+      << "see " << log;
+  ASSERT_TRUE(fs::exists(map_file));
+  const nlohmann::json mapping = nlohmann::json::parse(std::ifstream(dir.path() / "mapping" / "stats.json"));
+  EXPECT_EQ(mapping["map_file"]["bytes"].get<std::uint64_t>(), fs::file_size(map_file));
+  const std::size_t keyframes = mapping["map_file"]["keyframes"].get<std::size_t>();
+  EXPECT_GE(keyframes, 1u);
+
+  ASSERT_EQ(std::system((common + " --output " + (dir.path() / "localization").string() + " --load-map " +
+                         map_file.string() + " --localization > " + log.string() + " 2>&1")
+                            .c_str()),
+            0)
+      << "see " << log;
+  const nlohmann::json localization =
+      nlohmann::json::parse(std::ifstream(dir.path() / "localization" / "stats.json"));
+  EXPECT_TRUE(localization["localization_only"].get<bool>());
+  EXPECT_EQ(localization["summary"]["tracked"].get<std::size_t>(), 40u);
+  EXPECT_EQ(localization["summary"]["keyframes_in_map"].get<std::size_t>(), keyframes);
+  EXPECT_EQ(localization["frames"][0]["reason"].get<std::string>(), "relocalized");
+
+  // --localization without a map is refused by the command line.
+  EXPECT_NE(std::system((common + " --output " + (dir.path() / "x").string() + " --localization > " +
+                         log.string() + " 2>&1")
+                            .c_str()),
+            0);
 }
 
 }  // namespace
