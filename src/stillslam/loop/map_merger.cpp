@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/loop/global_bundle_adjustment.h"
 #include "stillslam/map/fuse.h"
 #include "stillslam/optimize/pose_graph.h"
 
@@ -233,6 +234,14 @@ MapMergeStats merge_maps(Map& target, Map& source, const LoopDetection& detectio
 
   // 6. One map.
   target.absorb(source);
+
+  // 7. Global BA (the oldest keyframe, the target's origin, fixed).
+  if (options.global_bundle_adjustment) {
+    const GlobalBundleAdjustmentProblem problem = snapshot_global_problem(target);
+    const BundleAdjustmentResult result = solve_global_problem(problem, options.global_bundle_adjustment_options);
+    apply_global_result(target, problem, result);
+    stats.global_bundle_adjustment = !result.aborted;
+  }
   return stats;
 }
 

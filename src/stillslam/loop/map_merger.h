@@ -15,7 +15,10 @@
 //  5. the rest of the source map follows the window's correction through a
 //     pose graph (spanning tree + strong covisibility, window fixed); points
 //     move with their reference keyframe;
-//  6. keyframes and points move into the target map (Map::absorb).
+//  6. keyframes and points move into the target map (Map::absorb);
+//  7. optionally a global bundle adjustment of the merged map (inline: the
+//     threads are stopped anyway), which spreads the seam's correction over
+//     both maps' internal drift.
 // The caller holds both maps' update mutexes and has stopped local mapping
 // and loop closing of the source map.
 #include <cstdint>
@@ -32,12 +35,20 @@ struct MapMergerOptions {
   BundleAdjustmentOptions welding_bundle_adjustment = default_welding_bundle_adjustment();
   int strong_covisibility_weight = 100;
   int pose_graph_iterations = 20;
+  bool global_bundle_adjustment = true;
+  BundleAdjustmentOptions global_bundle_adjustment_options = default_global_bundle_adjustment();
 
   static BundleAdjustmentOptions default_welding_bundle_adjustment() {
     BundleAdjustmentOptions o;
     o.iterations = 10;
     o.outlier_rounds = 1;
     o.iterations_after_outliers = 10;
+    return o;
+  }
+  static BundleAdjustmentOptions default_global_bundle_adjustment() {
+    BundleAdjustmentOptions o;
+    o.iterations = 10;  // as after a loop closure
+    o.outlier_rounds = 0;
     return o;
   }
 };
@@ -51,6 +62,7 @@ struct MapMergeStats {
   int fused_points = 0;
   int welding_keyframes = 0, welding_fixed_keyframes = 0, welding_outliers = 0;
   int graph_nodes = 0, graph_edges = 0;
+  bool global_bundle_adjustment = false;
 };
 
 // `detection` found detection.query (a keyframe of `source`) in `target`.
