@@ -10,6 +10,7 @@
 //     the ground truth all together (a map's small drift does not count, a
 //     pose in the wrong place does; a pose in a new map that is not merged
 //     shows as its offset)
+//   err_prior: the largest such error before the loss (the map's own drift)
 //   ATE rmse of the final trajectory (SE3-aligned)
 //   false relocalizations: relocalized frames whose pose is > 5 cm off
 //   maps started (atlas: after --new-map-after lost frames, default the
@@ -212,6 +213,7 @@ struct Outcome {
   std::string how;           // "relocalized" or the tracker's reason
   double error_after = -1;   // error of that first pose (m), see below
   double max_error_after = 0;  // over the rest of the run
+  double max_error_before = 0;  // before the loss (the map's own drift, same alignment)
   double ate = -1;           // final trajectory (after loop/merge corrections), SE3-aligned
   int relocalizations = 0, false_relocalizations = 0;
   int new_maps = 0, merges = 0;
@@ -275,6 +277,7 @@ Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const 
     }
     const std::size_t back_from = std::max<std::size_t>(v.gap_end, static_cast<std::size_t>(std::max(out.first_lost, 0)));
     const bool after_loss = out.first_lost >= 0 && i >= back_from;
+    if (s.has_pose && out.first_lost < 0) out.max_error_before = std::max(out.max_error_before, err);
     if (s.has_pose && after_loss) {
       if (out.frames_to_track < 0) {
         out.frames_to_track = static_cast<int>(i - back_from);
@@ -317,8 +320,9 @@ int main(int argc, char** argv) {
     } else {
       for (int seed : a.seeds) sequences.push_back(render(a, seed));
     }
-    std::printf("%-20s %4s %4s %5s | %6s %-24s %9s %9s %8s %6s %5s %4s %5s\n", "sequence", "gap", "skip", "lost@",
-                "frames", "how", "err_first", "err_max", "ATE", "relocs", "false", "maps", "merge");
+    std::printf("%-20s %4s %4s %5s | %6s %-24s %9s %9s %9s %8s %6s %5s %4s %5s\n", "sequence", "gap", "skip",
+                "lost@", "frames", "how", "err_first", "err_max", "err_prior", "ATE", "relocs", "false", "maps",
+                "merge");
     std::vector<double> all_attempts, frames_to_track, first_errors;
     int runs = 0, within_bar = 0, false_total = 0, reloc_total = 0, never = 0;
     for (const Sequence& seq : sequences) {
@@ -341,9 +345,10 @@ int main(int argc, char** argv) {
           } else {
             ++never;
           }
-          std::printf("%-20s %4zu %4zu %5d | %6d %-24s %9.4f %9.4f %8.4f %6d %5d %4d %5d\n", seq.name.c_str(), begin,
-                      skip, o.first_lost, o.frames_to_track, o.how.substr(0, 24).c_str(), o.error_after,
-                      o.max_error_after, o.ate, o.relocalizations, o.false_relocalizations, o.new_maps, o.merges);
+          std::printf("%-20s %4zu %4zu %5d | %6d %-24s %9.4f %9.4f %9.4f %8.4f %6d %5d %4d %5d\n", seq.name.c_str(),
+                      begin, skip, o.first_lost, o.frames_to_track, o.how.substr(0, 24).c_str(), o.error_after,
+                      o.max_error_after, o.max_error_before, o.ate, o.relocalizations, o.false_relocalizations,
+                      o.new_maps, o.merges);
           std::fflush(stdout);
         }
       }
