@@ -103,8 +103,9 @@ int main(int argc, char** argv) {
     if (!mapped.map_file) throw Error("mapping run saved no map: " + mapped.map_file_error.value_or("?"));
     std::printf("  tracked %zu of %zu frames, %zu keyframes, %zu points, %zu maps\n", mapped.trajectory.size(),
                 mapped.frames.size(), mapped.map_file->keyframes, mapped.map_file->map_points, mapped.map_file->maps);
-    std::printf("  save: %.1f ms, file %s: %.2f MB (%.1f kB per keyframe)\n", mapped.save_map_ms, args.map.c_str(),
-                static_cast<double>(mapped.map_file->bytes) / 1e6,
+    std::printf("  save: %.1f ms, file %s: %.2f MB (%.2f MB before zstd; %.1f kB per keyframe)\n", mapped.save_map_ms,
+                args.map.c_str(), static_cast<double>(mapped.map_file->bytes) / 1e6,
+                static_cast<double>(mapped.map_file->raw_bytes) / 1e6,
                 static_cast<double>(mapped.map_file->bytes) / 1e3 /
                     static_cast<double>(std::max<std::size_t>(1, mapped.map_file->keyframes)));
 

@@ -1,7 +1,7 @@
 // Map file format, version 1 (all integers little-endian):
 //   8 bytes  magic "STILLMAP"
 //   u32      format version
-//   u32      compression of the payload (0: none, 1: zstd)
+//   u32      compression of the payload (0: none, 1: zstd, one frame)
 //   u64      stored payload size, u64 payload size after decompression
 //   payload
 //   u64      FNV-1a 64 checksum of every byte before it
@@ -23,6 +23,8 @@
 //     u32 loop edges, each u64 a, b
 // (str = u32 length + bytes.)
 #include "stillslam/map/map_file.h"
+
+#include <zstd.h>
 
 #include <cmath>
 #include <fstream>
@@ -46,6 +48,7 @@ constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8;
 constexpr std::size_t kChecksumBytes = 8;
 constexpr std::uint64_t kNone = ~0ULL;
 constexpr std::uint32_t kNoCompression = 0;
+constexpr std::uint32_t kZstd = 1;
 
 std::uint64_t fnv1a(const char* p, std::size_t n) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
@@ -423,21 +426,36 @@ struct MapFileAccess {
 
 MapFileStats save_map_file(const std::filesystem::path& path, const MapFileContext& context,
                            const std::vector<MapToSave>& maps, std::uint64_t active_map_id,
-                           std::uint64_t next_map_id) {
+                           std::uint64_t next_map_id, const MapFileSaveOptions& options) {
   if (!context.setup) throw Error("save_map_file: no camera setup given for " + path.string());
   ByteWriter payload;
   MapFileAccess::write_payload(payload, context, maps, active_map_id, next_map_id);
+  const std::string& raw = payload.bytes();
 
   ByteWriter file;
   file.put_bytes(kMagic, sizeof(kMagic));
   file.put(kMapFileVersion);
-  file.put(kNoCompression);
-  file.put(static_cast<std::uint64_t>(payload.bytes().size()));
-  file.put(static_cast<std::uint64_t>(payload.bytes().size()));
-  file.bytes() += payload.bytes();
+  file.put(options.compress ? kZstd : kNoCompression);
+  std::string& out = file.bytes();
+  const std::size_t sizes_at = out.size();
+  file.put(std::uint64_t{0});  // stored size, filled in below
+  file.put(static_cast<std::uint64_t>(raw.size()));
+  if (options.compress) {
+    out.resize(kHeaderBytes + ZSTD_compressBound(raw.size()));
+    const std::size_t n = ZSTD_compress(out.data() + kHeaderBytes, out.size() - kHeaderBytes, raw.data(), raw.size(),
+                                        options.zstd_level);
+    if (ZSTD_isError(n)) throw Error("cannot compress map for " + path.string() + ": " + ZSTD_getErrorName(n));
+    out.resize(kHeaderBytes + n);
+  } else {
+    out += raw;
+  }
+  const auto stored = static_cast<std::uint64_t>(out.size() - kHeaderBytes);
+  std::memcpy(out.data() + sizes_at, &stored, sizeof(stored));
+  MapFileStats stats;
+  stats.raw_bytes = raw.size();
   payload.bytes().clear();
   payload.bytes().shrink_to_fit();
-  file.put(fnv1a(file.bytes().data(), file.bytes().size()));
+  file.put(fnv1a(out.data(), out.size()));
 
   std::filesystem::path tmp = path;
   tmp += ".partial";
@@ -456,7 +474,6 @@ MapFileStats save_map_file(const std::filesystem::path& path, const MapFileConte
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw Error("cannot write map file " + path.string() + ": " + ec.message());
 
-  MapFileStats stats;
   stats.bytes = file.bytes().size();
   stats.maps = maps.size();
   for (const MapToSave& m : maps) {
@@ -467,8 +484,8 @@ MapFileStats save_map_file(const std::filesystem::path& path, const MapFileConte
 }
 
 MapFileStats save_map_file(const std::filesystem::path& path, const MapFileContext& context, const Map& map,
-                           const MapLoopEdges& loop_edges) {
-  return save_map_file(path, context, {MapToSave{&map, loop_edges}}, map.id());
+                           const MapLoopEdges& loop_edges, const MapFileSaveOptions& options) {
+  return save_map_file(path, context, {MapToSave{&map, loop_edges}}, map.id(), 0, options);
 }
 
 MapFileContents load_map_file(const std::filesystem::path& path, const MapFileContext& expected,
@@ -502,11 +519,21 @@ MapFileContents load_map_file(const std::filesystem::path& path, const MapFileCo
   if (bytes.size() != expected_size || fnv1a(bytes.data(), bytes.size() - kChecksumBytes) != checksum) {
     throw Error(name + ": corrupt map file (checksum mismatch); " + rerun_hint());
   }
-  if (compression != kNoCompression || raw != stored) {
+  const char* data = bytes.data() + kHeaderBytes;
+  std::string decompressed;
+  if (compression == kZstd) {
+    decompressed.resize(raw);
+    const std::size_t n = ZSTD_decompress(decompressed.data(), decompressed.size(), data, stored);
+    if (ZSTD_isError(n) || n != raw) {
+      throw Error(name + ": corrupt map file (zstd: " + (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "size mismatch") +
+                  "); " + rerun_hint());
+    }
+    data = decompressed.data();
+  } else if (compression != kNoCompression || raw != stored) {
     throw Error(name + ": corrupt map file (unknown payload compression " + std::to_string(compression) + "); " +
                 rerun_hint());
   }
-  ByteReader payload(bytes.data() + kHeaderBytes, stored, name);
+  ByteReader payload(data, raw, name);
   return MapFileAccess::read_payload(payload, path, expected, ids);
 }
 
