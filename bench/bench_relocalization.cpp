@@ -23,10 +23,12 @@
 //       [--width 320 --height 240] [--noise 0] [--vocabulary FILE]
 //       [--new-map-after N (-1: system default, 0: never)] [--no-verification] [--verbose]
 //   build/bench/bench_relocalization --sequence DIR [--gaps ...] [--gap S|0] ...
+//       [--keep-images]
 //       DIR: a TUM-layout folder written by `stillslam simulate` (settings.yaml,
-//       groundtruth.txt), e.g. with --occlude T:D; --gap 0 keeps every image
-//       (the occluder alone forces the loss) and the gap positions only say
-//       where the loss is expected (first lost frame after that index).
+//       groundtruth.txt), e.g. with an occluder (--occlude T:D of the sim);
+//       --keep-images leaves the frames of [a, a + gap) as they are (the
+//       occluder forces the loss): --gaps a --gap D then only say where the
+//       view is blocked. --segmentation runs with the settings' segmentation.
 // Plain main, no Google Benchmark.
 #include <opencv2/imgproc.hpp>
 
@@ -66,6 +68,7 @@ struct Args {
   bool segmentation = false;  // --sequence only: run with the settings' segmentation
   int new_map_after = -1;     // SystemOptions::new_map_after_lost_frames (-1: the system's default)
   bool no_verification = false;  // relocalization without its verification (for comparison)
+  bool keep_images = false;      // the gap's frames are not blanked (an occluder in the sequence)
   bool verbose = false;
 };
 
@@ -102,6 +105,7 @@ Args parse(int argc, char** argv) {
     else if (k == "--segmentation") a.segmentation = true;
     else if (k == "--new-map-after") a.new_map_after = std::stoi(value());
     else if (k == "--no-verification") a.no_verification = true;
+    else if (k == "--keep-images") a.keep_images = true;
     else if (k == "--verbose") a.verbose = true;
     else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_relocalization.cpp)");
   }
@@ -182,14 +186,14 @@ struct Variant {
   std::size_t gap_end = 0;  // index (in the variant) of the first frame after the gap
 };
 
-Variant make_variant(const Sequence& seq, std::size_t begin, std::size_t end, std::size_t skip) {
+Variant make_variant(const Sequence& seq, std::size_t begin, std::size_t end, std::size_t skip, bool keep_images) {
   Variant v;
   for (std::size_t i = 0; i < seq.frames.size(); ++i) {
     if (i >= end && i < end + skip) continue;
     if (i >= end && v.gap_end == 0) v.gap_end = v.frames.size();
     v.frames.push_back(&seq.frames[i]);
     v.groundtruth.push_back(seq.groundtruth[i]);
-    v.blank.push_back(i >= begin && i < end);
+    v.blank.push_back(!keep_images && i >= begin && i < end);
   }
   if (v.gap_end == 0) v.gap_end = v.frames.size();
   return v;
@@ -332,7 +336,7 @@ int main(int argc, char** argv) {
         for (int g : a.gaps) {
           const auto begin = static_cast<std::size_t>(g);
           if (begin + gap + skip + 10 > seq.frames.size()) continue;
-          const Variant v = make_variant(seq, begin, begin + gap, skip);
+          const Variant v = make_variant(seq, begin, begin + gap, skip, a.keep_images);
           const Outcome o = run(seq, v, begin, a);
           ++runs;
           all_attempts.insert(all_attempts.end(), o.attempt_ms.begin(), o.attempt_ms.end());
