@@ -6,7 +6,7 @@
 //
 //   build/bench/bench_loop_closing [--sequence DIR] [--threaded] [--runs N]
 //       [--frames N] [--fps F] [--width W] [--height H] [--noise L] [--seed S] [--features N]
-//       [--vocabulary FILE] [--trajectories DIR] [--verbose: every frame, loop detector decisions]
+//       [--vocabulary FILE] [--no-global-ba] [--trajectories DIR] [--verbose: every frame, loop detector decisions]
 //
 // Without --sequence the sequence is rendered in memory (defaults: the
 // end-to-end test's 230 frames at 10 Hz, 320x240, noise 1, 1000 features).
@@ -36,7 +36,7 @@ struct Args {
   std::string sequence, trajectories;
   test::RenderedLoopOptions render;
   int features = 0;  // 0: the sequence's (or the render default)
-  bool threaded = false, verbose = false;
+  bool threaded = false, verbose = false, global_ba = true;
   int runs = 1;
   std::filesystem::path vocabulary = test::committed_vocabulary();
 };
@@ -61,6 +61,7 @@ Args parse(int argc, char** argv) {
     else if (k == "--runs") a.runs = std::max(1, std::stoi(value()));
     else if (k == "--vocabulary") a.vocabulary = value();
     else if (k == "--threaded") a.threaded = true;
+    else if (k == "--no-global-ba") a.global_ba = false;
     else if (k == "--verbose") a.verbose = true;
     else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_loop_closing.cpp)");
   }
@@ -121,6 +122,7 @@ int main(int argc, char** argv) {
         o.loop_closing = on == 1;
         o.deterministic = !args.threaded;
         o.vocabulary = args.vocabulary;
+        o.global_bundle_adjustment = args.global_ba;
         const test::LoopRun r = test::run_loop(seq.settings, seq.frames, o);
         int tracked = 0;
         for (const FrameStats& f : r.frames) tracked += f.has_pose ? 1 : 0;

@@ -99,6 +99,7 @@ inline RenderedLoop render_loop(const RenderedLoopOptions& o) {
 struct LoopRunOptions {
   bool loop_closing = true;
   bool deterministic = true;
+  bool global_bundle_adjustment = true;  // false: the essential graph alone corrects the loop
   std::filesystem::path vocabulary = committed_vocabulary();
 };
 
@@ -117,6 +118,7 @@ inline LoopRun run_loop(const Settings& settings, const std::vector<SensorFrame>
   options.deterministic = o.deterministic;
   options.vocabulary_path = o.vocabulary;
   options.loop_closing = o.loop_closing;
+  options.loop_closer.run_global_bundle_adjustment = o.global_bundle_adjustment;
   options.use_segmentation = false;
   // ORB-SLAM's 500 keypoints with depth to start are meant for 1000 features.
   options.tracker.init_min_keypoints = std::min(500, settings.orb.n_features / 2);

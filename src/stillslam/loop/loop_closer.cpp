@@ -74,7 +74,12 @@ void LoopCloser::stop() {
   queue_changed_.notify_all();
   if (thread_.joinable()) thread_.join();
   if (!options_.threaded) process_pending();
-  stop_global_bundle_adjustment();
+  if (options_.finish_global_bundle_adjustment_on_stop) {
+    std::lock_guard<std::mutex> lock(gba_mutex_);
+    if (gba_thread_.joinable()) gba_thread_.join();
+  } else {
+    stop_global_bundle_adjustment();
+  }
 }
 
 void LoopCloser::process(const KeyFramePtr& keyframe) {

@@ -30,6 +30,11 @@ struct LoopCloserOptions {
   LoopDetectorOptions detector;
   LoopCorrectionOptions correction;
   bool run_global_bundle_adjustment = true;
+  // stop() lets a running global BA finish and apply (ORB-SLAM3's shutdown
+  // waits for it too): a loop closed shortly before the end of a run would
+  // otherwise leave only the essential-graph correction in the output
+  // (rendered loop: ATE 0.092 m instead of 0.034 m). false: stop() aborts it.
+  bool finish_global_bundle_adjustment_on_stop = true;
   BundleAdjustmentOptions global_bundle_adjustment = default_global_bundle_adjustment();
   // Wired by System: local mapping must not write poses while a loop is
   // corrected (its BA works on copies outside the lock). Both optional.
@@ -73,7 +78,8 @@ class LoopCloser {
   void process_pending();
   // Waits until the queue is empty and no global BA runs.
   void flush();
-  // Processes what is queued, aborts a running global BA, joins.
+  // Processes what is queued, lets a running global BA finish (or aborts it,
+  // see finish_global_bundle_adjustment_on_stop), joins.
   void stop();
 
   bool global_bundle_adjustment_running() const { return gba_running_.load(); }
