@@ -11,6 +11,8 @@
 #include "map/map_builder.h"
 #include "map/synthetic_scene.h"
 #include "stillslam/core/error.h"
+#include "stillslam/map/atlas.h"
+#include "stillslam/map/frame.h"
 #include "stillslam/map/map_file.h"
 #include "stillslam/place/vocabulary.h"
 
@@ -228,6 +230,35 @@ TEST_F(MapFileTest, SeveralMapsShareTheCallersCounters) {
   expect_maps_equal(second.map(), *loaded.maps[1].map);
   // The second map's first keyframe (id 3) is its origin.
   EXPECT_TRUE(loaded.maps[1].map->keyframe(3)->is_origin());
+}
+
+TEST_F(MapFileTest, LoadedMapsReplaceAnEmptyAtlas) {
+  auto ids = std::make_shared<MapIdCounters>();
+  test::MapBuilder first(scene_, 0, ids), second(scene_, 2, ids);
+  for (int i = 0; i < 2; ++i) first.add_keyframe(test::pose_at(0.2 * i));
+  for (int i = 0; i < 2; ++i) second.add_keyframe(test::pose_at(-0.2 * i, 0.1));
+  const auto path = dir_.path() / "atlas.bin";
+  save_map_file(path, context_, {MapToSave{&first.map(), {}}, MapToSave{&second.map(), {}}}, 2, 3);
+
+  Atlas atlas;  // one empty map 0, as System starts
+  MapFileContents loaded = load_map_file(path, context_, atlas.id_counters());
+  std::vector<std::unique_ptr<Map>> maps;
+  for (LoadedMap& m : loaded.maps) maps.push_back(std::move(m.map));
+  atlas.replace_maps(std::move(maps), loaded.active_map_id, loaded.next_map_id);
+  ASSERT_EQ(atlas.num_maps(), 2u);
+  EXPECT_EQ(atlas.active_map_id(), 2u);
+  EXPECT_EQ(atlas.active_map().num_keyframes(), 2u);
+  EXPECT_EQ(atlas.map_of_keyframe(3), std::optional<std::uint64_t>(2));
+  // New maps and keyframes continue after the loaded ids.
+  EXPECT_EQ(atlas.create_map().id(), 3u);
+  Frame frame = scene_.make_frame(50, test::pose_at(0.1));
+  frame.set_pose(test::pose_at(0.1));
+  EXPECT_EQ(atlas.active_map().create_keyframe(frame)->id(), 4u);
+  // Only into an empty atlas.
+  MapFileContents again = load_map_file(path, context_, atlas.id_counters());
+  std::vector<std::unique_ptr<Map>> more;
+  for (LoadedMap& m : again.maps) more.push_back(std::move(m.map));
+  EXPECT_THROW(atlas.replace_maps(std::move(more), 2, 3), Error);
 }
 
 TEST_F(MapFileTest, MissingFileNamesIt) {

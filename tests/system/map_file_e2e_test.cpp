@@ -136,6 +136,23 @@ TEST_F(MapFileEndToEnd, LoadingNeedsAMapAndTheVocabulary) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("room.map: not a stillslam map file"), std::string::npos) << e.what();
   }
+  // A run that never initialized saves no map; loading it says so.
+  {
+    System never(seq.settings, SensorType::Rgbd, seq.stereo, options_with(vocabulary_file()));
+    SensorFrame black = seq.frames[0];
+    black.gray = cv::Mat::zeros(black.gray.size(), black.gray.type());
+    black.color = cv::Mat::zeros(black.color.size(), black.color.type());
+    never.process(black);
+    EXPECT_EQ(never.save_map(dir.path() / "empty.map").maps, 0u);
+  }
+  options.load_map = dir.path() / "empty.map";
+  try {
+    System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
+    FAIL() << "a map file without keyframes must be an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("empty.map: the map file holds no keyframes"), std::string::npos)
+        << e.what();
+  }
 }
 
 // Through the binary: --save-map writes the map, --load-map --localization

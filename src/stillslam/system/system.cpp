@@ -195,6 +195,10 @@ void System::load_maps(const std::filesystem::path& path) {
   }
   Stopwatch time;
   MapFileContents contents = load_map_file(path, map_file_context(), atlas_->id_counters());
+  if (contents.maps.empty()) {
+    throw Error(path.string() + ": the map file holds no keyframes (the run that saved it never initialized a "
+                "map); save a map from a run that tracked");
+  }
   std::vector<std::unique_ptr<Map>> maps;
   std::size_t keyframes = 0, points = 0;
   for (LoadedMap& loaded : contents.maps) {
@@ -211,9 +215,19 @@ void System::load_maps(const std::filesystem::path& path) {
 
 MapFileStats System::save_map(const std::filesystem::path& path) {
   shutdown();  // no thread changes a map while it is written
+  // Maps without keyframes (a new map not initialized yet) are left out; if
+  // the active one is among them, the largest map is active in the file.
   std::vector<MapToSave> maps;
-  for (const Map* map : atlas_->maps()) maps.push_back({map, {}});
-  return save_map_file(path, map_file_context(), maps, atlas_->active_map_id(), atlas_->maps_created());
+  const Map* largest = nullptr;
+  bool active_kept = false;
+  for (const Map* map : atlas_->maps()) {
+    if (map->num_keyframes() == 0) continue;
+    maps.push_back({map, {}});
+    active_kept = active_kept || map->id() == atlas_->active_map_id();
+    if (!largest || map->num_keyframes() > largest->num_keyframes()) largest = map;
+  }
+  const std::uint64_t active = active_kept || !largest ? atlas_->active_map_id() : largest->id();
+  return save_map_file(path, map_file_context(), maps, active, atlas_->maps_created());
 }
 
 System::~System() { shutdown(); }
