@@ -1,12 +1,17 @@
-// Atlas end to end on a rendered sequence: 15 black frames make tracking lose
-// the map and relocalization fail; after 10 lost frames a new map starts and
-// initializes from the first frame with an image again. Without merging the
+// Atlas end to end on a rendered sequence: 5 black frames make tracking lose
+// the map, then 10 frames of noise texture without depth (plenty of
+// keypoints, but a place no map has seen) make relocalization fail; after
+// those 10 failures (black frames do not count) a new map starts and
+// initializes from the first real frame again. Black frames alone do not count as failed
+// relocalizations (BlackFramesDoNotStartANewMap). Without merging the
 // frames after the gap are tracked in map 1 and those before stay in map 0;
 // with merging the new map is recognized in the old one and merged back, and
 // the whole trajectory is in one frame again.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/system/system.h"
@@ -18,16 +23,25 @@ namespace {
 constexpr std::size_t kBlankBegin = 40;
 constexpr std::size_t kBlankEnd = 55;  // first frame with an image again
 constexpr int kLostFramesForNewMap = 10;
+constexpr std::size_t kNoiseBegin = kBlankEnd - kLostFramesForNewMap;  // black before, noise from here
 
 std::filesystem::path vocabulary_file() {
   return std::filesystem::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
 }
 
-test::SimSequence sequence_with_blank() {
+test::SimSequence sequence_with_gap(bool noise) {
   test::SimSequence seq = test::render_sim_sequence("walking_xyz", 120, 320, 240, false);
   for (std::size_t i = kBlankBegin; i < kBlankEnd; ++i) {
-    seq.frames[i].gray.setTo(0);
-    seq.frames[i].color.setTo(0);
+    SensorFrame& f = seq.frames[i];
+    if (noise && i >= kNoiseBegin) {
+      cv::RNG rng(i);
+      rng.fill(f.gray, cv::RNG::UNIFORM, 0, 256);
+      if (!f.color.empty()) cv::cvtColor(f.gray, f.color, cv::COLOR_GRAY2BGR);
+      f.depth.setTo(0);
+    } else {
+      f.gray.setTo(0);
+      f.color.setTo(0);
+    }
   }
   return seq;
 }
@@ -40,12 +54,12 @@ struct Outcome {
   std::vector<MapMergeStats> merges;
 };
 
-Outcome run(const test::SimSequence& seq, bool merging) {
+Outcome run(const test::SimSequence& seq, bool merging, int new_map_after = kLostFramesForNewMap) {
   SystemOptions options;
   options.deterministic = true;
   options.tracker.init_min_keypoints = 300;
   options.vocabulary_path = vocabulary_file();
-  options.new_map_after_lost_frames = kLostFramesForNewMap;
+  options.new_map_after_lost_frames = new_map_after;
   options.map_merging = merging;
   System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
   Outcome out;
@@ -68,20 +82,20 @@ Trajectory poses_of(const std::vector<MapPose>& t, std::optional<std::uint64_t> 
 
 TEST(AtlasEndToEnd, NewMapAfterRepeatedRelocalizationFailure) {
   if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
-  const test::SimSequence seq = sequence_with_blank();
+  const test::SimSequence seq = sequence_with_gap(true);
   const Outcome out = run(seq, false);
 
-  const std::size_t switch_frame = kBlankBegin + kLostFramesForNewMap - 1;
   for (std::size_t i = 0; i < kBlankBegin; ++i) {
     EXPECT_TRUE(out.frames[i].has_pose) << i;
     EXPECT_EQ(out.frames[i].map_id, 0u) << i;
   }
+  const std::size_t switch_frame = kBlankEnd - 1;  // the 10th noise frame
   for (std::size_t i = kBlankBegin; i <= switch_frame; ++i) {
     EXPECT_EQ(out.frames[i].state, TrackingState::Lost) << i;
     EXPECT_EQ(out.frames[i].new_map, i == switch_frame) << i;
   }
   for (std::size_t i = switch_frame + 1; i < kBlankEnd; ++i) {
-    EXPECT_EQ(out.frames[i].state, TrackingState::NotInitialized) << i;  // black: no map to start
+    EXPECT_EQ(out.frames[i].state, TrackingState::NotInitialized) << i;  // no depth: no map to start
   }
   EXPECT_EQ(out.frames[kBlankEnd].reason, "initialized");
   for (std::size_t i = kBlankEnd; i < out.frames.size(); ++i) {
@@ -108,7 +122,7 @@ TEST(AtlasEndToEnd, NewMapAfterRepeatedRelocalizationFailure) {
 
 TEST(AtlasEndToEnd, NewMapIsMergedBackIntoTheOldOne) {
   if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
-  const test::SimSequence seq = sequence_with_blank();
+  const test::SimSequence seq = sequence_with_gap(true);
   const Outcome out = run(seq, true);
 
   EXPECT_EQ(out.new_maps, 1);
@@ -134,6 +148,23 @@ TEST(AtlasEndToEnd, NewMapIsMergedBackIntoTheOldOne) {
   std::cout << "ATE over the whole sequence after the merge: " << ev.ape_stats.rmse << " m (max "
             << ev.ape_stats.max << ") over " << ev.pairs << " poses\n";
   EXPECT_LT(ev.ape_stats.rmse, 0.01);
+}
+
+// The same gap all black: relocalization never had an image to work on, so
+// no new map starts however long the blank; the camera is relocalized in map
+// 0 at the first frame with an image again.
+TEST(AtlasEndToEnd, BlackFramesDoNotStartANewMap) {
+  if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
+  const test::SimSequence seq = sequence_with_gap(false);
+  const Outcome out = run(seq, true, 5);
+  EXPECT_EQ(out.new_maps, 0);
+  EXPECT_EQ(out.maps, 1u);
+  for (std::size_t i = kBlankBegin; i < kBlankEnd; ++i) EXPECT_EQ(out.frames[i].state, TrackingState::Lost) << i;
+  EXPECT_EQ(out.frames[kBlankEnd].reason, "relocalized");
+  for (std::size_t i = kBlankEnd; i < out.frames.size(); ++i) {
+    EXPECT_TRUE(out.frames[i].has_pose) << i;
+    EXPECT_EQ(out.frames[i].map_id, 0u) << i;
+  }
 }
 
 }  // namespace

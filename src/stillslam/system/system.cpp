@@ -352,7 +352,13 @@ FrameStats System::process(const SensorFrame& input) {
     if (loop_closer_) loop_closer_->process_pending();
     stats.mapping_ms = mapping.elapsed_ms();
   }
-  lost_frames_ = result.state == TrackingState::Lost ? lost_frames_ + 1 : 0;
+  // Only frames on which relocalization could have worked count towards a new
+  // map: black or fully masked frames say nothing about the place.
+  if (result.state != TrackingState::Lost) {
+    lost_frames_ = 0;
+  } else if (stats.build.keypoints_after >= options_.relocalization.min_inliers) {
+    ++lost_frames_;
+  }
   if (new_map_after_lost_frames_ > 0 && lost_frames_ >= new_map_after_lost_frames_) {
     start_new_map();
     stats.new_map = true;
