@@ -66,15 +66,19 @@ if(STILLSLAM_PCH)
     <nlohmann/json.hpp>)
 endif()
 
-# stillslam_speed_up(target [UNITY]): reuse the shared PCH; UNITY also turns on
-# the unity build for the target. Used for the module libraries and the binary.
+# stillslam_speed_up(target [UNITY] [BATCH n]): reuse the shared PCH; UNITY also
+# turns on the unity build for the target, in batches of BATCH files (default
+# STILLSLAM_UNITY_BATCH). Used for the module libraries and the binary.
 function(stillslam_speed_up target)
-  cmake_parse_arguments(ARG "UNITY" "" "" ${ARGN})
+  cmake_parse_arguments(ARG "UNITY" "BATCH" "" ${ARGN})
+  if(NOT ARG_BATCH)
+    set(ARG_BATCH ${STILLSLAM_UNITY_BATCH})
+  endif()
   if(STILLSLAM_PCH)
     target_precompile_headers(${target} REUSE_FROM stillslam_pch)
   endif()
   if(STILLSLAM_UNITY_BUILD AND ARG_UNITY)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${STILLSLAM_UNITY_BATCH})
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${ARG_BATCH})
     get_target_property(sources ${target} SOURCES)
     foreach(file ${STILLSLAM_UNITY_EXCLUDE})
       if(${PROJECT_SOURCE_DIR}/${file} IN_LIST sources)
