@@ -13,7 +13,10 @@
 //
 // e.g. stillslam simulate --out /tmp/atlas_loop --trajectory loop --frames 330 --fps 15 --no-people --seed 1
 //      build/bench/bench_atlas --input /tmp/atlas_loop --blank 45:60 --resume 150
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -40,29 +43,30 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("missing value after " + k);
-      return argv[++i];
-    };
-    if (k == "--input") a.input = value();
-    else if (k == "--config") a.config = value();
-    else if (k == "--vocabulary") a.vocabulary = value();
-    else if (k == "--blank") {
-      const std::string v = value();
-      const auto colon = v.find(':');
-      if (colon == std::string::npos) throw Error("--blank A:B (frames A..B-1 black)");
-      a.blank_begin = std::stoul(v.substr(0, colon));
-      a.blank_end = std::stoul(v.substr(colon + 1));
-    } else if (k == "--resume") a.resume = std::stoul(value());
-    else if (k == "--new-map-after") a.new_map_after = std::stoi(value());
-    else if (k == "--max-frames") a.max_frames = std::stoul(value());
-    else if (k == "--threaded") a.threaded = true;
-    else if (k == "--no-comparison") a.compare = false;
-    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_atlas.cpp)");
+  std::string blank;
+  bool no_comparison = false;
+  CLI::App app("Atlas benchmark (see the comment at the top of bench/bench_atlas.cpp)", "bench_atlas");
+  app.add_option("--input", a.input, "dataset folder")->required();
+  app.add_option("--config", a.config, "settings YAML (default: INPUT/settings.yaml)");
+  app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary file");
+  app.add_option("--blank", blank, "A:B: frames A..B-1 black")->required();
+  app.add_option("--resume", a.resume, "frame C where the camera resumes (B <= C)")->required();
+  app.add_option("--new-map-after", a.new_map_after, "SystemOptions::new_map_after_lost_frames (-1: default)")
+      ->capture_default_str();
+  app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
+  app.add_flag("--threaded", a.threaded, "local mapping in its own thread");
+  app.add_flag("--no-comparison", no_comparison, "skip the run without merging");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
-  if (a.input.empty() || a.blank_end <= a.blank_begin || a.resume < a.blank_end) {
+  a.compare = !no_comparison;
+  const auto colon = blank.find(':');
+  if (colon == std::string::npos) throw Error("--blank A:B (frames A..B-1 black)");
+  a.blank_begin = std::stoul(blank.substr(0, colon));
+  a.blank_end = std::stoul(blank.substr(colon + 1));
+  if (a.blank_end <= a.blank_begin || a.resume < a.blank_end) {
     throw Error("usage: bench_atlas --input DIR --blank A:B --resume C (A < B <= C)");
   }
   if (a.config.empty()) a.config = (fs::path(a.input) / "settings.yaml").string();

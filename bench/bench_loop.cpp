@@ -7,9 +7,10 @@
 //
 // Times are per call: wall clock and CPU time of the calling thread (the
 // latter is unaffected by other processes competing for the cores).
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -63,10 +64,16 @@ void timed(Timing& t, F&& f) {
 int main(int argc, char** argv) {
   int turns = 1;
   int repeats = 20;
-  for (int a = 1; a + 1 < argc; a += 2) {
-    if (std::strcmp(argv[a], "--turns") == 0) turns = std::max(1, std::atoi(argv[a + 1]));
-    if (std::strcmp(argv[a], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[a + 1]));
+  CLI::App app("Loop detection and closing costs (see the comment at the top of bench/bench_loop.cpp)", "bench_loop");
+  app.add_option("--turns", turns, "turns around the scene (36 keyframes each, at least 1)")->capture_default_str();
+  app.add_option("--repeats", repeats, "calls per timed operation (at least 1)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
+  turns = std::max(1, turns);
+  repeats = std::max(1, repeats);
   const int keyframes = 36 * turns;
   test::LoopScene scene;
   auto vocabulary = std::make_shared<const Vocabulary>(scene.train_vocabulary());

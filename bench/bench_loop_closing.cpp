@@ -16,6 +16,7 @@
 // Default mode is deterministic (synchronous local mapping and loop closing:
 // same input, same numbers); --threaded runs the threads as `stillslam run`
 // does (numbers vary from run to run; --runs N repeats each mode).
+#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -43,28 +44,30 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(k + " needs a value");
-      return argv[++i];
-    };
-    if (k == "--sequence") a.sequence = value();
-    else if (k == "--trajectories") a.trajectories = value();
-    else if (k == "--frames") a.render.frames = std::stoi(value());
-    else if (k == "--fps") a.render.fps = std::stod(value());
-    else if (k == "--width") a.render.width = std::stoi(value());
-    else if (k == "--height") a.render.height = std::stoi(value());
-    else if (k == "--noise") a.render.noise = std::stoi(value());
-    else if (k == "--seed") a.render.seed = std::stoull(value());
-    else if (k == "--features") a.features = std::stoi(value());
-    else if (k == "--runs") a.runs = std::max(1, std::stoi(value()));
-    else if (k == "--vocabulary") a.vocabulary = value();
-    else if (k == "--threaded") a.threaded = true;
-    else if (k == "--no-global-ba") a.global_ba = false;
-    else if (k == "--verbose") a.verbose = true;
-    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_loop_closing.cpp)");
+  CLI::App app("Loop-closing bar (see the comment at the top of bench/bench_loop_closing.cpp)", "bench_loop_closing");
+  app.add_option("--sequence", a.sequence, "TUM folder instead of rendering");
+  app.add_option("--trajectories", a.trajectories, "write the estimated trajectories into this folder");
+  app.add_option("--frames", a.render.frames, "rendered frames")->capture_default_str();
+  app.add_option("--fps", a.render.fps, "rendered frame rate")->capture_default_str();
+  app.add_option("--width", a.render.width, "rendered width")->capture_default_str();
+  app.add_option("--height", a.render.height, "rendered height")->capture_default_str();
+  app.add_option("--noise", a.render.noise, "sensor noise level")->capture_default_str();
+  app.add_option("--seed", a.render.seed, "render seed")->capture_default_str();
+  app.add_option("--features", a.features, "ORB features (0: the sequence's or the render default)")
+      ->capture_default_str();
+  app.add_option("--runs", a.runs, "repeat each mode N times (at least 1)")->capture_default_str();
+  app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary file")->capture_default_str();
+  app.add_flag("--threaded", a.threaded, "threads as in `stillslam run`");
+  bool no_global_ba = false;
+  app.add_flag("--no-global-ba", no_global_ba, "no global BA after a loop closure");
+  app.add_flag("--verbose", a.verbose, "every frame, loop detector decisions");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
+  a.global_ba = !no_global_ba;
+  a.runs = std::max(1, a.runs);
   if (a.features > 0) a.render.features = a.features;
   return a;
 }

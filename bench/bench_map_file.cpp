@@ -14,11 +14,13 @@
 //   build/bench/bench_map_file --config S.yaml --input DIR [--groundtruth GT]
 //       [--vocabulary FILE] [--map FILE] [--start N] [--max-frames N]
 //       [--threaded] [--segmentation] [--opencv-threads N]
+#include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -44,25 +46,23 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("missing value after " + k);
-      return argv[++i];
-    };
-    if (k == "--config") a.config = value();
-    else if (k == "--input") a.input = value();
-    else if (k == "--groundtruth") a.groundtruth = value();
-    else if (k == "--vocabulary") a.vocabulary = value();
-    else if (k == "--map") a.map = value();
-    else if (k == "--start") a.start = std::stoul(value());
-    else if (k == "--max-frames") a.max_frames = std::stoul(value());
-    else if (k == "--threaded") a.threaded = true;
-    else if (k == "--segmentation") a.segmentation = true;
-    else if (k == "--opencv-threads") a.opencv_threads = std::stoi(value());
-    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_map_file.cpp)");
+  CLI::App app("Map save/load benchmark (see the comment at the top of bench/bench_map_file.cpp)", "bench_map_file");
+  app.add_option("--config", a.config, "settings YAML")->required();
+  app.add_option("--input", a.input, "dataset folder")->required();
+  app.add_option("--groundtruth", a.groundtruth, "ground-truth trajectory (TUM) for ATE");
+  app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary file");
+  app.add_option("--map", a.map, "map file to write and read")->capture_default_str();
+  app.add_option("--start", a.start, "first frame of the resumed run")->capture_default_str();
+  app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
+  app.add_flag("--threaded", a.threaded, "local mapping in its own thread");
+  app.add_flag("--segmentation", a.segmentation, "run with the segmentation front end");
+  app.add_option("--opencv-threads", a.opencv_threads, "cv::setNumThreads (-1: OpenCV's default)")
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
-  if (a.config.empty() || a.input.empty()) throw Error("usage: bench_map_file --config YAML --input DIR [options]");
   return a;
 }
 

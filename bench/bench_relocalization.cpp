@@ -30,6 +30,7 @@
 //       occluder forces the loss): --gaps a --gap D then only say where the
 //       view is blocked. --segmentation runs with the settings' segmentation.
 // Plain main, no Google Benchmark.
+#include <CLI/CLI.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -37,7 +38,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -72,42 +72,35 @@ struct Args {
   bool verbose = false;
 };
 
-template <typename T>
-std::vector<T> parse_list(const std::string& s) {
-  std::vector<T> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(static_cast<T>(std::stod(item)));
-  }
-  return out;
-}
-
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("missing value after " + k);
-      return argv[++i];
-    };
-    if (k == "--trajectory") a.trajectory = value();
-    else if (k == "--frames") a.frames = std::stoi(value());
-    else if (k == "--seeds") a.seeds = parse_list<int>(value());
-    else if (k == "--gaps") a.gaps = parse_list<int>(value());
-    else if (k == "--gap") a.gap_s = std::stod(value());
-    else if (k == "--skip") a.skips = parse_list<double>(value());
-    else if (k == "--width") a.width = std::stoi(value());
-    else if (k == "--height") a.height = std::stoi(value());
-    else if (k == "--noise") a.noise = std::stoi(value());
-    else if (k == "--vocabulary") a.vocabulary = value();
-    else if (k == "--sequence") a.sequence = value();
-    else if (k == "--segmentation") a.segmentation = true;
-    else if (k == "--new-map-after") a.new_map_after = std::stoi(value());
-    else if (k == "--no-verification") a.no_verification = true;
-    else if (k == "--keep-images") a.keep_images = true;
-    else if (k == "--verbose") a.verbose = true;
-    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_relocalization.cpp)");
+  CLI::App app("Relocalization benchmark (see the comment at the top of bench/bench_relocalization.cpp)",
+               "bench_relocalization");
+  app.add_option("--trajectory", a.trajectory, "simulated trajectory")->capture_default_str();
+  app.add_option("--frames", a.frames, "rendered frames")->capture_default_str();
+  app.add_option("--seeds", a.seeds, "render seeds (comma separated)")->delimiter(',')->capture_default_str();
+  app.add_option("--gaps", a.gaps, "frames where a gap starts (comma separated)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--gap", a.gap_s, "gap length in seconds")->capture_default_str();
+  app.add_option("--skip", a.skips, "seconds skipped in the gap (comma separated)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--width", a.width, "rendered width")->capture_default_str();
+  app.add_option("--height", a.height, "rendered height")->capture_default_str();
+  app.add_option("--noise", a.noise, "sensor noise level")->capture_default_str();
+  app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary file")->capture_default_str();
+  app.add_option("--sequence", a.sequence, "TUM folder instead of rendering");
+  app.add_flag("--segmentation", a.segmentation, "--sequence only: run with the settings' segmentation");
+  app.add_option("--new-map-after", a.new_map_after, "SystemOptions::new_map_after_lost_frames (-1: default)")
+      ->capture_default_str();
+  app.add_flag("--no-verification", a.no_verification, "relocalization without its verification");
+  app.add_flag("--keep-images", a.keep_images, "the gap's frames are not blanked");
+  app.add_flag("--verbose", a.verbose, "print every frame");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
   return a;
 }

@@ -7,6 +7,7 @@
 //   build/bench/bench_slam --config S.yaml --input DIR [--groundtruth GT]
 //       [--no-segmentation] [--deterministic] [--check-determinism]
 //       [--max-frames N] [--opencv-threads N] [--json OUT]
+#include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 
 #include <cstdio>
@@ -35,24 +36,22 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("missing value after " + k);
-      return argv[++i];
-    };
-    if (k == "--config") a.config = value();
-    else if (k == "--input") a.input = value();
-    else if (k == "--groundtruth") a.groundtruth = value();
-    else if (k == "--json") a.json = value();
-    else if (k == "--no-segmentation") a.no_segmentation = true;
-    else if (k == "--deterministic") a.deterministic = true;
-    else if (k == "--check-determinism") a.check_determinism = true;
-    else if (k == "--max-frames") a.max_frames = std::stoul(value());
-    else if (k == "--opencv-threads") a.opencv_threads = std::stoi(value());
-    else throw Error("unknown option " + k + " (see the comment at the top of bench/bench_slam.cpp)");
+  CLI::App app("End-to-end SLAM benchmark (see the comment at the top of bench/bench_slam.cpp)", "bench_slam");
+  app.add_option("--config", a.config, "settings YAML")->required();
+  app.add_option("--input", a.input, "dataset folder")->required();
+  app.add_option("--groundtruth", a.groundtruth, "ground-truth trajectory (TUM) for ATE");
+  app.add_option("--json", a.json, "write the results as JSON here");
+  app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
+  app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
+  app.add_flag("--check-determinism", a.check_determinism, "run the deterministic mode twice and compare");
+  app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
+  app.add_option("--opencv-threads", a.opencv_threads, "cv::setNumThreads (-1: OpenCV's default)")
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
-  if (a.config.empty() || a.input.empty()) throw Error("usage: bench_slam --config YAML --input DIR [options]");
   return a;
 }
 

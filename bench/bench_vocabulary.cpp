@@ -19,14 +19,15 @@
 //   build/bench/bench_vocabulary [--vocabulary FILE] [--loads 10] [--images 40]
 //       [--sizes 100,1000,5000] [--queries 200]
 // Plain main, no Google Benchmark.
+#include <CLI/CLI.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,25 +89,20 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("missing value after " + k);
-      return argv[++i];
-    };
-    if (k == "--vocabulary") a.vocabulary = value();
-    else if (k == "--loads") a.loads = std::max(1, std::stoi(value()));
-    else if (k == "--images") a.images = std::max(4, std::stoi(value()));
-    else if (k == "--queries") a.queries = std::max(1, std::stoi(value()));
-    else if (k == "--sizes") {
-      a.sizes.clear();
-      std::stringstream ss(value());
-      std::string item;
-      while (std::getline(ss, item, ',')) a.sizes.push_back(std::stoul(item));
-    } else {
-      throw Error("unknown option " + k + " (see the comment at the top of bench/bench_vocabulary.cpp)");
-    }
+  CLI::App app("Vocabulary benchmark (see the comment at the top of bench/bench_vocabulary.cpp)", "bench_vocabulary");
+  app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary file")->capture_default_str();
+  app.add_option("--loads", a.loads, "vocabulary loads (at least 1)")->capture_default_str();
+  app.add_option("--images", a.images, "rendered images (at least 4)")->capture_default_str();
+  app.add_option("--queries", a.queries, "queries (at least 1)")->capture_default_str();
+  app.add_option("--sizes", a.sizes, "database sizes (comma separated)")->delimiter(',')->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));  // --help prints and exits 0; bad values print CLI11's message and exit non-zero
   }
+  a.loads = std::max(1, a.loads);
+  a.images = std::max(4, a.images);
+  a.queries = std::max(1, a.queries);
   return a;
 }
 
