@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "commands.h"
 #include "stillslam/core/error.h"
@@ -18,7 +20,30 @@ struct SimulateArgs {
   std::string extract_from;
   int cutouts = 12;
   std::vector<std::string> exclude, sitting;
+  std::string occlude;  // T[:D]
 };
+
+// --occlude T[:D] -> occlude_at = T, occlude_seconds = D (default 1).
+void parse_occlude(const std::string& text, sim::SimulationOptions& o) {
+  if (text.empty()) return;
+  const auto colon = text.find(':');
+  try {
+    std::size_t used = 0;
+    const std::string t = text.substr(0, colon);
+    o.occlude_at = std::stod(t, &used);
+    if (used != t.size()) throw std::invalid_argument(t);
+    if (colon != std::string::npos) {
+      const std::string d = text.substr(colon + 1);
+      o.occlude_seconds = std::stod(d, &used);
+      if (used != d.size()) throw std::invalid_argument(d);
+    }
+  } catch (const std::exception&) {
+    throw Error("--occlude " + text + ": expected T or T:D in seconds, e.g. --occlude 12 or --occlude 12:1.5");
+  }
+  if (*o.occlude_at < 0 || o.occlude_seconds <= 0) {
+    throw Error("--occlude " + text + ": T must be >= 0 and D > 0 seconds");
+  }
+}
 
 void run_simulate(const SimulateArgs& args) {
   if (!args.extract_from.empty()) {
@@ -33,7 +58,9 @@ void run_simulate(const SimulateArgs& args) {
     return;
   }
   if (args.out.empty()) throw Error("simulate: --out DIR is required");
-  const auto s = sim::write_sequence(args.out, args.options, [](int done, int total) {
+  sim::SimulationOptions options = args.options;
+  parse_occlude(args.occlude, options);
+  const auto s = sim::write_sequence(args.out, options, [](int done, int total) {
     if (done % 100 == 0 || done == total) spdlog::info("rendered {}/{} frames", done, total);
   });
   spdlog::info("{} frames in {:.1f} s ({:.1f} ms/frame rendering) -> {}", s.frames, s.seconds,
@@ -59,6 +86,10 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--people", o.people, "Walking people")->capture_default_str();
   cmd->add_option("--still-people", o.still_people, "People who stay (almost) still: seated on a chair behind the desk")->capture_default_str();
   cmd->add_flag("--moved-object", o.moved_object, "A box on the desk is picked up and moved");
+  cmd->add_option("--occlude", args->occlude,
+                  "T[:D]: at T seconds a person walks right in front of the camera and hides (nearly) the whole "
+                  "view for D seconds (default 1; walks in during the 0.5 s before, out during the 0.5 s after); "
+                  "in the masks; dropped by --no-people");
   cmd->add_flag("--no-people", o.no_people, "No moving things: static reference of the same sequence");
   cmd->add_option("--seed", o.seed, "Random seed (scene, people, noise)")->capture_default_str();
   cmd->add_flag("--overwrite", o.overwrite, "Replace a sequence already in --out");

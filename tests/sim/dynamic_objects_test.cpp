@@ -7,21 +7,37 @@
 namespace stillslam::sim {
 namespace {
 
+// A camera standing at `position` looking at the desk for `seconds`.
+std::vector<TimedPose> still_camera(const Eigen::Vector3d& position, double seconds) {
+  std::vector<TimedPose> path;
+  for (double t = 0; t <= seconds + 1e-9; t += 0.1) path.push_back({t, look_at(position, SceneLayout::desk_centre())});
+  return path;
+}
+
+PeopleTextures people_textures() {
+  PeopleTextures p;
+  p.walking = {4, 5};
+  p.walking_sizes = {{100, 300}, {120, 280}};
+  p.sitting = {6};
+  p.sitting_sizes = {{80, 150}};
+  return p;
+}
+
 TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
   DynamicObjectsOptions o;
   o.walking = 3;
   o.still = 1;
   o.duration = 20;
   const std::vector<cv::Size> textures(4, cv::Size(640, 480));
-  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), {4, 5}, {{100, 300}, {120, 280}}, {6}, {{80, 150}},
+  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(camera, 20), people_textures(),
                            textures, 9);
   ASSERT_EQ(dyn.people().size(), 4u);
-  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
   std::vector<Eigen::Vector3d> last(4);
   int standing_frames = 0;
   for (int k = 0; k <= 600; ++k) {
     const double t = k / 30.0;
-    const std::vector<Quad> quads = dyn.quads_at(t, camera);
+    const std::vector<Quad> quads = dyn.quads_at(t, look_at(camera, SceneLayout::desk_centre()));
     ASSERT_EQ(quads.size(), 4u);
     for (size_t i = 0; i < quads.size(); ++i) {
       const Quad& q = quads[i];
@@ -52,10 +68,12 @@ TEST(DynamicObjects, BoxIsDynamicOnlyWhileCarried) {
   o.moved_box = true;
   o.duration = 10;  // picked up at 4 s, set down at 6.5 s
   const std::vector<cv::Size> textures(2, cv::Size(64, 64));
-  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), {}, {}, {}, {}, textures, 1);
-  const auto before = dyn.quads_at(3.9, Eigen::Vector3d::Zero());
-  const auto during = dyn.quads_at(5.0, Eigen::Vector3d::Zero());
-  const auto after = dyn.quads_at(7.0, Eigen::Vector3d::Zero());
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(Eigen::Vector3d::Zero(), 10), {},
+                           textures, 1);
+  const Eigen::Isometry3d camera = look_at(Eigen::Vector3d::Zero(), SceneLayout::desk_centre());
+  const auto before = dyn.quads_at(3.9, camera);
+  const auto during = dyn.quads_at(5.0, camera);
+  const auto after = dyn.quads_at(7.0, camera);
   ASSERT_EQ(before.size(), 5u);
   EXPECT_EQ(before[0].dynamic_id, 0);
   EXPECT_NE(during[0].dynamic_id, 0);

@@ -1,5 +1,7 @@
 #include "stillslam/sim/dynamic_objects.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,52 +19,74 @@ double smooth(double s) {
 
 }  // namespace
 
-DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
-                               const Eigen::Isometry3d& T_world_scene,
-                               const std::vector<int>& cutout_textures,
-                               const std::vector<cv::Size>& cutout_sizes,
-                               const std::vector<int>& sitting_textures,
-                               const std::vector<cv::Size>& sitting_sizes,
+DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
+                               const std::vector<TimedPose>& camera_path, const PeopleTextures& textures,
                                const std::vector<cv::Size>& texture_sizes, std::uint64_t seed)
-    : options_(options), T_world_scene_(T_world_scene) {
+    : options_(options), T_world_scene_(T_world_scene), textures_(textures) {
   PanelPainter rng(texture_sizes, seed * 31 + 7);
   std::uint16_t next_id = 1;
-  const int n_cut = static_cast<int>(cutout_textures.size());
+  const int n_cut = static_cast<int>(textures.walking.size());
   const int first = n_cut > 0 ? static_cast<int>(rng.uniform(0, n_cut)) : 0;
   auto make = [&](int i) {
     PersonTrack p;
     const int c = (first + i) % std::max(1, n_cut);
-    p.texture = cutout_textures[c];
-    p.aspect = static_cast<double>(cutout_sizes[c].width) / cutout_sizes[c].height;
+    p.texture = textures.walking[c];
+    p.aspect = static_cast<double>(textures.walking_sizes[c].width) / textures.walking_sizes[c].height;
     p.height = rng.uniform(1.62, 1.85);
     p.id = next_id++;
     return p;
   };
+  std::vector<CameraSample> samples;
+  const Eigen::Isometry3d T_scene_world = T_world_scene.inverse();
+  for (const TimedPose& tp : camera_path) {
+    const Eigen::Isometry3d T_scene_cam = T_scene_world * tp.T_world_cam;
+    samples.push_back({tp.t, T_scene_cam.translation(), T_scene_cam.linear().col(2)});
+  }
+  WalkingPathOptions path_options;
+  path_options.half_view_tan = options.half_view_tan;
+  const WalkingPathPlanner planner(std::move(samples), path_options);
   for (int i = 0; i < options.walking && n_cut > 0; ++i) {
     PersonTrack p = make(i);
-    // Alternate: close in front of the desk (covers up to half the image), then behind it.
+    // Alternate: close (covers up to half the image), then farther away. Each
+    // person crosses the line of sight the camera has at its own anchor time,
+    // spread over the sequence.
     const bool near = i % 2 == 0;
-    // Far paths run between the chairs and the front wall.
-    const double y = near ? rng.uniform(0.8, 1.25) : rng.uniform(3.05, 3.15);
-    const double slant = near ? rng.uniform(-0.25, 0.25) : rng.uniform(-0.08, 0.08);
-    const double xa = near ? -1.6 : -2.3, xb = near ? 2.3 : 1.15;
-    const bool flip = rng.uniform(0, 1) < 0.5;
-    p.a = Eigen::Vector2d(flip ? xb : xa, y - slant);
-    p.b = Eigen::Vector2d(flip ? xa : xb, y + slant);
+    const double preferred = near ? rng.uniform(0.8, 1.3) : rng.uniform(1.6, 2.6);
+    const double slot = options.duration / options.walking;
+    const double anchor = slot * (i + 0.5) + rng.uniform(-0.15, 0.15) * slot;
+    std::optional<WalkingPath> path = planner.plan_near(anchor, preferred);
+    if (!path) {
+      // The camera never looks across free floor (e.g. it faces a wall closely):
+      // walk across the room in front of the scene origin instead.
+      spdlog::warn("sim: no free floor across the camera's line of sight for person {}; walking across the room", i);
+      const double y = near ? 1.0 : 3.1;
+      path = WalkingPath{{-1.6, y}, {2.3, y}, 0.4, y, anchor};
+    }
+    if (rng.uniform(0, 1) < 0.5) {
+      std::swap(path->a, path->b);
+      path->crossing = 1 - path->crossing;
+    }
+    p.a = path->a;
+    p.b = path->b;
     p.speed = rng.uniform(0.8, 1.3);
     p.pause = rng.uniform(0.5, 3.0);
     // Every other person stops in view for a while (talking, looking around).
-    p.stop_at = rng.uniform(0.35, 0.65);
+    p.stop_at = std::clamp(path->crossing + rng.uniform(-0.1, 0.1), 0.1, 0.9);
     p.stop_time = i % 2 == 1 || i >= 2 ? rng.uniform(1.5, 4.0) : 0.0;
-    p.offset = rng.uniform(0, 8.0) + 3.0 * i;
+    // Phase the back-and-forth so the person passes the crossing at the anchor time.
+    const double len = (p.b - p.a).norm();
+    const double period = 2 * (len / p.speed + p.stop_time + p.pause);
+    const double reach_crossing = path->crossing * len / p.speed + (path->crossing > p.stop_at ? p.stop_time : 0.0);
+    p.offset = std::fmod(reach_crossing - anchor + rng.uniform(-0.5, 0.5) + 100 * period, period);
     people_.push_back(p);
+    paths_.push_back(*path);
   }
   for (int i = 0; i < options.still && n_cut > 0; ++i) {
     PersonTrack p = make(options.walking + i);
-    if (!sitting_textures.empty()) {
-      const int c = i % static_cast<int>(sitting_textures.size());
-      p.texture = sitting_textures[c];
-      p.aspect = static_cast<double>(sitting_sizes[c].width) / sitting_sizes[c].height;
+    if (!textures.sitting.empty()) {
+      const int c = i % static_cast<int>(textures.sitting.size());
+      p.texture = textures.sitting[c];
+      p.aspect = static_cast<double>(textures.sitting_sizes[c].width) / textures.sitting_sizes[c].height;
       p.height = rng.uniform(1.2, 1.3);  // seated, feet on the floor
     }
     p.still = true;
@@ -75,6 +99,7 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options,
     const V lo(0.3, 1.6, SceneLayout::kDeskTopZ);
     rng.box(lo, lo + V(0.28, 0.22, 0.2), box_);
   }
+  if (options.occlude_at && textures.occluder >= 0) occluder_id_ = next_id++;
 }
 
 V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
@@ -103,9 +128,9 @@ V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
   return V(xy.x(), xy.y(), SceneLayout::kFloorZ);
 }
 
-std::vector<Quad> DynamicObjects::quads_at(double t, const V& camera_world) const {
+std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_world_cam) const {
   std::vector<Quad> out;
-  const V cam = T_world_scene_.inverse() * camera_world;
+  const V cam = T_world_scene_.inverse() * T_world_cam.translation();
   for (const PersonTrack& p : people_) {
     V foot = person_foot(p, t);
     // Steps at ~1.8 Hz: the body rises twice per stride and sways sideways once.
@@ -144,7 +169,34 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const V& camera_world) cons
     q.axis_u = T_world_scene_.linear() * q.axis_u;
     q.axis_v = T_world_scene_.linear() * q.axis_v;
   }
+  if (const std::optional<Quad> q = occluder_at(t, T_world_cam)) out.push_back(*q);
   return out;
+}
+
+std::optional<Quad> DynamicObjects::occluder_at(double t, const Eigen::Isometry3d& T_world_cam) const {
+  if (occluder_id_ == 0) return std::nullopt;
+  const double start = *options_.occlude_at, end = start + options_.occlude_seconds;
+  if (t <= start - kOccluderWalk || t >= end + kOccluderWalk) return std::nullopt;
+  // A person 1.75 m tall seen from kOccluderDistance: it stays in front of the
+  // lens (moves with the camera) so the view is covered whatever the camera does.
+  const double height = 1.75;
+  const double width = height * textures_.occluder_size.width / std::max(1, textures_.occluder_size.height);
+  const Eigen::Vector2d& c = textures_.occluder_centre;
+  // Walks in from the right and out to the left: sideways offset of the torso.
+  const double out_of_view = kOccluderDistance * options_.half_view_tan + width;
+  double x = 0;
+  if (t < start) x = out_of_view * (1 - smooth((t - (start - kOccluderWalk)) / kOccluderWalk));
+  if (t > end) x = -out_of_view * smooth((t - end) / kOccluderWalk);
+  const Eigen::Matrix3d& R = T_world_cam.linear();
+  const V centre = T_world_cam * V(x, 0, kOccluderDistance);
+  Quad q;
+  q.axis_u = R.col(0) * width;   // image right
+  q.axis_v = R.col(1) * height;  // image down
+  q.origin = centre - q.axis_u * c.x() - q.axis_v * c.y();
+  q.texture = textures_.occluder;
+  q.alpha_tested = true;
+  q.dynamic_id = occluder_id_;
+  return q;
 }
 
 }  // namespace stillslam::sim

@@ -1,17 +1,22 @@
 #pragma once
 // Everything that moves: people (RGBA billboards at human height, always
-// facing the camera, walking back and forth across the view with a little
-// bob and sway), people who stay still (seated on the chairs behind the desk,
-// swaying slightly), and a box carried across the desk. Each gets its own
+// facing the camera, walking back and forth across the camera's line of sight
+// with a little bob and sway, see walking_paths.h), people who stay still
+// (seated on the chairs behind the desk, swaying slightly), a box carried
+// across the desk, and an optional occluder: a person passing right in front
+// of the lens who hides (nearly) the whole view for a while. Each gets its own
 // Quad::dynamic_id so masks can be told apart; the box is marked dynamic only
 // while it moves (before and after it is part of the static scene).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
+#include "stillslam/sim/camera_motion.h"
 #include "stillslam/sim/quad.h"
 #include "stillslam/sim/scene_layout.h"
+#include "stillslam/sim/walking_paths.h"
 
 namespace stillslam::sim {
 
@@ -34,29 +39,59 @@ struct DynamicObjectsOptions {
   int still = 0;
   bool moved_box = false;
   double duration = 10.0;        // seconds; the box moves at 40% of it
+  double half_view_tan = 0.6;    // tan of the camera's horizontal half field of view
+  // The occluder covers the view from occlude_at for occlude_seconds (it walks
+  // in during the kOccluderWalk seconds before and out during those after).
+  std::optional<double> occlude_at;
+  double occlude_seconds = 1.0;
+};
+
+// Renderer texture indices and pixel sizes of the people.
+struct PeopleTextures {
+  std::vector<int> walking;
+  std::vector<cv::Size> walking_sizes;
+  std::vector<int> sitting;  // seated people (may be empty: still people then stand)
+  std::vector<cv::Size> sitting_sizes;
+  // The occluder's cut-out and the texture point (normalized) put on the
+  // optical axis: the middle of its most opaque part (the torso).
+  int occluder = -1;
+  cv::Size occluder_size;
+  Eigen::Vector2d occluder_centre{0.5, 0.35};
 };
 
 class DynamicObjects {
  public:
-  // cutout_textures: renderer texture indices of the cut-outs; cutout_sizes: their pixel sizes.
-  // sitting_*: the same for seated people (may be empty: still people then stand).
+  // Seconds the occluder takes to walk into (and out of) the view.
+  static constexpr double kOccluderWalk = 0.5;
+  // Its distance in front of the lens (metres along the optical axis).
+  static constexpr double kOccluderDistance = 0.2;
+
+  // camera_path: world-frame camera poses over the sequence (t = seconds since
+  // the start, every ~0.1 s); walking paths are laid across its lines of sight.
+  // texture_sizes: the room's photo textures (for the box).
   DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
-                 const std::vector<int>& cutout_textures, const std::vector<cv::Size>& cutout_sizes,
-                 const std::vector<int>& sitting_textures, const std::vector<cv::Size>& sitting_sizes,
+                 const std::vector<TimedPose>& camera_path, const PeopleTextures& textures,
                  const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
 
-  // Quads at time t (seconds since the start); billboards face camera_world.
-  std::vector<Quad> quads_at(double t, const Eigen::Vector3d& camera_world) const;
+  // Quads at time t (seconds since the start) in the world frame; billboards
+  // face the camera, the occluder stands in front of it.
+  std::vector<Quad> quads_at(double t, const Eigen::Isometry3d& T_world_cam) const;
   const std::vector<PersonTrack>& people() const { return people_; }
+  const std::vector<WalkingPath>& walking_paths() const { return paths_; }  // one per walking person
+  std::uint16_t occluder_id() const { return occluder_id_; }                // 0: none
+  Eigen::Vector3d person_foot(const PersonTrack& p, double t) const;        // scene frame
 
  private:
-  Eigen::Vector3d person_foot(const PersonTrack& p, double t) const;  // scene frame
+  std::optional<Quad> occluder_at(double t, const Eigen::Isometry3d& T_world_cam) const;
 
   DynamicObjectsOptions options_;
   Eigen::Isometry3d T_world_scene_;
+  PeopleTextures textures_;
   std::vector<PersonTrack> people_;
+  std::vector<WalkingPath> paths_;
   std::vector<Quad> box_;        // the movable box in scene frame at its start, resting
   std::uint16_t box_id_ = 0;
+  std::uint16_t occluder_id_ = 0;
 };
 
 }  // namespace stillslam::sim

@@ -117,10 +117,9 @@ std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
   }
   // Furniture.
   const double f = L::kFloorZ;
-  p.box(V(-0.8, 1.5, f), V(0.8, 2.3, L::kDeskTopZ), q);     // desk in front of the camera
-  p.box(V(-2.5, 0.4, f), V(-1.8, 2.4, -0.7), q);            // side table, left
-  p.box(V(1.3, 3.2, f), V(2.5, 3.78, 0.4), q);              // cabinet, front right
-  p.box(V(-1.0, -2.18, f), V(1.0, -1.8, 0.6), q);           // shelf behind
+  for (const Eigen::AlignedBox3d& b : {L::desk(), L::side_table(), L::cabinet(), L::shelf()}) {
+    p.box(b.min(), b.max(), q);  // desk in front of the camera, side table left, cabinet front right, shelf behind
+  }
   p.box(V(-0.35, 2.05, L::kDeskTopZ), V(0.35, 2.12, -0.22), q);  // monitor
   // Two chairs behind the desk: seat and backrest.
   for (int i = 0; i < 2; ++i) {

@@ -23,6 +23,25 @@ struct SceneLayout {
   // Floor point at the front edge of chair i (0 or 1) behind the desk, where a
   // seated person's billboard stands.
   static Eigen::Vector3d chair_front(int i) { return {i == 0 ? -1.25 : 1.0, 2.5, kFloorZ}; }
+  // Furniture standing on the floor (the boxes build_static_scene draws):
+  // where nobody may walk, and (when tall) what hides people behind it.
+  static Eigen::AlignedBox3d desk() { return box({-0.8, 1.5, kFloorZ}, {0.8, 2.3, kDeskTopZ}); }
+  static Eigen::AlignedBox3d side_table() { return box({-2.5, 0.4, kFloorZ}, {-1.8, 2.4, -0.7}); }
+  static Eigen::AlignedBox3d cabinet() { return box({1.3, 3.2, kFloorZ}, {2.5, 3.78, 0.4}); }
+  static Eigen::AlignedBox3d shelf() { return box({-1.0, -2.18, kFloorZ}, {1.0, -1.8, 0.6}); }
+  // Seat and backrest of chair i together.
+  static Eigen::AlignedBox3d chair(int i) {
+    const Eigen::Vector3d c = chair_front(i);
+    return box({c.x() - 0.23, c.y() + 0.02, kFloorZ}, {c.x() + 0.23, c.y() + 0.47, kFloorZ + 0.95});
+  }
+  static std::vector<Eigen::AlignedBox3d> furniture() {
+    return {desk(), side_table(), cabinet(), shelf(), chair(0), chair(1)};
+  }
+
+ private:
+  static Eigen::AlignedBox3d box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return Eigen::AlignedBox3d(lo, hi);
+  }
 };
 
 // Where the scene frame sits in the trajectory's world frame. Generated paths

@@ -3,6 +3,7 @@
 // produce byte-identical files (the seed drives every random choice).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "stillslam/geometry/camera_calibration.h"
@@ -25,6 +26,11 @@ struct SimulationOptions {
   int still_people = 0;        // people standing (almost) still in view
   bool moved_object = false;   // a box on the desk is picked up and carried away
   bool no_people = false;      // drop every dynamic thing (static reference run)
+  // A person walks right in front of the lens and hides (nearly) the whole view
+  // from occlude_at for occlude_seconds (seconds since the first frame), e.g.
+  // to test relocalization. In the ground-truth masks like everyone else.
+  std::optional<double> occlude_at;
+  double occlude_seconds = 1.0;
 
   bool stereo = false;         // also write a rectified EuRoC-layout stereo pair
   double baseline = 0.1;       // metres, stereo only

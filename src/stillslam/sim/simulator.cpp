@@ -31,6 +31,41 @@ void warn_if_outside_room(const CameraMotion& motion, const Eigen::Isometry3d& T
   }
 }
 
+// The cut-out to hold in front of the lens and the texture point to centre:
+// the one whose window around that point (the part of a person seen from
+// DynamicObjects::kOccluderDistance, with a margin) is the most opaque.
+void pick_occluder(const std::vector<cv::Mat>& cutouts, const std::vector<int>& texture_ids,
+                   const CameraCalibration& camera, PeopleTextures& out) {
+  constexpr double kHeight = 1.75;
+  const double half_w = 1.2 * DynamicObjects::kOccluderDistance * (camera.width / 2.0) / camera.fx;
+  const double half_h = 1.2 * DynamicObjects::kOccluderDistance * (camera.height / 2.0) / camera.fy;
+  double best = -1;
+  for (std::size_t i = 0; i < cutouts.size(); ++i) {
+    const cv::Mat& c = cutouts[i];
+    if (c.channels() != 4 || c.empty()) continue;
+    const double metres_per_px = kHeight / c.rows;  // square texels
+    const int hw = std::max(1, static_cast<int>(half_w / metres_per_px));
+    const int hh = std::max(1, static_cast<int>(half_h / metres_per_px));
+    for (double v = 0.2; v <= 0.6 + 1e-9; v += 0.05) {
+      for (double u = 0.3; u <= 0.7 + 1e-9; u += 0.05) {
+        const int cx = static_cast<int>(u * c.cols), cy = static_cast<int>(v * c.rows);
+        const cv::Rect window = cv::Rect(cx - hw, cy - hh, 2 * hw, 2 * hh);
+        const cv::Rect inside = window & cv::Rect(0, 0, c.cols, c.rows);
+        if (inside.area() == 0) continue;
+        cv::Mat alpha;
+        cv::extractChannel(c(inside), alpha, 3);
+        const double opaque = cv::countNonZero(alpha > 127) / static_cast<double>(window.area());
+        if (opaque > best + 1e-9) {
+          best = opaque;
+          out.occluder = texture_ids[i];
+          out.occluder_size = c.size();
+          out.occluder_centre = Eigen::Vector2d(u, v);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 CameraCalibration camera_from_options(const SimulationOptions& o) {
@@ -61,32 +96,46 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
 
   const AssetLibrary assets = load_assets(options_.data_dir);
   std::vector<MipTexture> textures;
-  std::vector<cv::Size> texture_sizes, cutout_sizes;
-  std::vector<int> cutout_ids, sitting_ids;
-  std::vector<cv::Size> sitting_sizes;
+  std::vector<cv::Size> texture_sizes;
+  PeopleTextures people;
   for (const auto& t : assets.textures) {
     textures.emplace_back(t);
     texture_sizes.push_back(t.size());
   }
   for (const auto& c : assets.cutouts) {
-    cutout_ids.push_back(static_cast<int>(textures.size()));
+    people.walking.push_back(static_cast<int>(textures.size()));
     textures.emplace_back(c);
-    cutout_sizes.push_back(c.size());
+    people.walking_sizes.push_back(c.size());
   }
   for (const auto& c : assets.sitting) {
-    sitting_ids.push_back(static_cast<int>(textures.size()));
+    people.sitting.push_back(static_cast<int>(textures.size()));
     textures.emplace_back(c);
-    sitting_sizes.push_back(c.size());
+    people.sitting_sizes.push_back(c.size());
   }
-  renderer_ = std::make_unique<Renderer>(camera_from_options(options_), std::move(textures));
+  const CameraCalibration camera = camera_from_options(options_);
+  pick_occluder(assets.cutouts, people.walking, camera, people);
+  renderer_ = std::make_unique<Renderer>(camera, std::move(textures));
   static_quads_ = build_static_scene(T_world_scene_, texture_sizes, options_.seed);
   DynamicObjectsOptions dyn;
   dyn.walking = options_.no_people ? 0 : std::max(0, options_.people);
   dyn.still = options_.no_people ? 0 : std::max(0, options_.still_people);
   dyn.moved_box = options_.moved_object;
   dyn.duration = seconds;
-  dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, cutout_ids, cutout_sizes, sitting_ids,
-                                              sitting_sizes, texture_sizes, options_.seed);
+  dyn.half_view_tan = (camera.width / 2.0) / camera.fx;
+  if (!options_.no_people && options_.occlude_at) {
+    if (options_.occlude_seconds <= 0) throw Error("--occlude T:D needs a positive duration D");
+    dyn.occlude_at = options_.occlude_at;
+    dyn.occlude_seconds = options_.occlude_seconds;
+  }
+  // The camera path every 0.1 s: people walk across its lines of sight.
+  std::vector<TimedPose> camera_path;
+  const int samples = std::max(1, static_cast<int>(std::ceil(seconds / 0.1)));
+  for (int i = 0; i <= samples; ++i) {
+    const double t = seconds * i / samples;
+    camera_path.push_back({t, motion_.pose_at(t)});
+  }
+  dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, camera_path, people, texture_sizes,
+                                              options_.seed);
 }
 
 Eigen::Isometry3d Simulator::T_left_right() const {
@@ -103,11 +152,11 @@ Eigen::Isometry3d Simulator::pose(int index) const {
   return motion_.pose_at((stamp_ns(index) - motion_.start_ns()) * 1e-9);
 }
 
-std::vector<Quad> Simulator::quads_at(double t, const Eigen::Vector3d& camera_world) const {
+std::vector<Quad> Simulator::quads_at(double t, const Eigen::Isometry3d& T_world_cam) const {
   std::vector<Quad> quads = static_quads_;
   // The static reference run keeps the movable box where it rests at t = 0.
   const double t_dyn = options_.no_people ? 0.0 : t;
-  for (Quad& q : dynamic_->quads_at(t_dyn, camera_world)) quads.push_back(q);
+  for (Quad& q : dynamic_->quads_at(t_dyn, T_world_cam)) quads.push_back(q);
   return quads;
 }
 
@@ -121,7 +170,7 @@ SimFrame Simulator::render_frame(int index) const {
   f.timestamp = static_cast<double>(f.stamp_ns) * 1e-9;
   const double t = (f.stamp_ns - motion_.start_ns()) * 1e-9;
   f.T_world_cam = motion_.pose_at(t);
-  const std::vector<Quad> quads = quads_at(t, f.T_world_cam.translation());
+  const std::vector<Quad> quads = quads_at(t, f.T_world_cam);
 
   auto exposure = [&](const Eigen::Isometry3d& offset) {
     std::vector<Eigen::Isometry3d> poses;

@@ -52,8 +52,9 @@ class Simulator {
   Eigen::Isometry3d T_left_right() const;
   std::int64_t stamp_ns(int index) const;
   Eigen::Isometry3d pose(int index) const;
-  // Static room plus the moving things at time t (seconds since the start).
-  std::vector<Quad> quads_at(double t, const Eigen::Vector3d& camera_world) const;
+  // Static room plus the moving things at time t (seconds since the start)
+  // seen from T_world_cam (billboards face it, the occluder stands in front of it).
+  std::vector<Quad> quads_at(double t, const Eigen::Isometry3d& T_world_cam) const;
   const std::vector<Quad>& static_quads() const { return static_quads_; }
   const DynamicObjects& dynamic_objects() const { return *dynamic_; }
 
