@@ -57,6 +57,17 @@ struct LoopCloserStats {
   double detection_ms = 0;   // total: BoW query, consistency and geometry
   double correction_ms = 0;  // total
   double global_bundle_adjustment_ms = 0;
+
+  LoopCloserStats& operator+=(const LoopCloserStats& o) {
+    keyframes += o.keyframes;
+    loops_closed += o.loops_closed;
+    global_bundle_adjustments += o.global_bundle_adjustments;
+    global_bundle_adjustments_aborted += o.global_bundle_adjustments_aborted;
+    detection_ms += o.detection_ms;
+    correction_ms += o.correction_ms;
+    global_bundle_adjustment_ms += o.global_bundle_adjustment_ms;
+    return *this;
+  }
 };
 
 struct ClosedLoop {

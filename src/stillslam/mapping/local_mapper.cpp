@@ -112,6 +112,7 @@ void LocalMapper::run() {
 void LocalMapper::process(const KeyFramePtr& kf) {
   Stopwatch total;
   LocalMapperStats delta;
+  delta.keyframes = 1;
   {
     std::lock_guard<std::mutex> lock(map_.update_mutex());
     kf->set_not_erase(true);
@@ -164,14 +165,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   if (options_.on_keyframe_processed && keyframe_alive) options_.on_keyframe_processed(kf);
   delta.total_ms = total.elapsed_ms();
   std::lock_guard<std::mutex> lock(stats_mutex_);
-  stats_.keyframes += 1;
-  stats_.points_created += delta.points_created;
-  stats_.points_culled += delta.points_culled;
-  stats_.keyframes_culled += delta.keyframes_culled;
-  stats_.bundle_adjustments += delta.bundle_adjustments;
-  stats_.bundle_adjustments_aborted += delta.bundle_adjustments_aborted;
-  stats_.bundle_adjustment_ms += delta.bundle_adjustment_ms;
-  stats_.total_ms += delta.total_ms;
+  stats_ += delta;
 }
 
 }  // namespace stillslam

@@ -58,6 +58,18 @@ struct LocalMapperStats {
   int bundle_adjustments_aborted = 0;
   double bundle_adjustment_ms = 0;  // total
   double total_ms = 0;              // total processing time
+
+  LocalMapperStats& operator+=(const LocalMapperStats& o) {
+    keyframes += o.keyframes;
+    points_created += o.points_created;
+    points_culled += o.points_culled;
+    keyframes_culled += o.keyframes_culled;
+    bundle_adjustments += o.bundle_adjustments;
+    bundle_adjustments_aborted += o.bundle_adjustments_aborted;
+    bundle_adjustment_ms += o.bundle_adjustment_ms;
+    total_ms += o.total_ms;
+    return *this;
+  }
 };
 
 class LocalMapper {

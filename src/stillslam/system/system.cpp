@@ -66,33 +66,6 @@ std::filesystem::path resolve_vocabulary_option(const std::string& option) {
   return {};
 }
 
-namespace {
-
-LocalMapperStats operator+(LocalMapperStats a, const LocalMapperStats& b) {
-  a.keyframes += b.keyframes;
-  a.points_created += b.points_created;
-  a.points_culled += b.points_culled;
-  a.keyframes_culled += b.keyframes_culled;
-  a.bundle_adjustments += b.bundle_adjustments;
-  a.bundle_adjustments_aborted += b.bundle_adjustments_aborted;
-  a.bundle_adjustment_ms += b.bundle_adjustment_ms;
-  a.total_ms += b.total_ms;
-  return a;
-}
-
-LoopCloserStats operator+(LoopCloserStats a, const LoopCloserStats& b) {
-  a.keyframes += b.keyframes;
-  a.loops_closed += b.loops_closed;
-  a.global_bundle_adjustments += b.global_bundle_adjustments;
-  a.global_bundle_adjustments_aborted += b.global_bundle_adjustments_aborted;
-  a.detection_ms += b.detection_ms;
-  a.correction_ms += b.correction_ms;
-  a.global_bundle_adjustment_ms += b.global_bundle_adjustment_ms;
-  return a;
-}
-
-}  // namespace
-
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
     : options_(std::move(options)), sensor_(sensor) {
@@ -245,15 +218,19 @@ void System::stop_map_threads() {
   if (loop_closer_) loop_closer_->stop();
 }
 
+void System::retire_map_threads() {
+  stop_map_threads();
+  stopped_mapper_stats_ += mapper_->stats();
+  if (loop_closer_) stopped_loop_stats_ += loop_closer_->stats();
+}
+
 void System::shutdown() {
   stop_map_threads();
   if (segmentation_) segmentation_->stop();
 }
 
 void System::start_new_map() {
-  stop_map_threads();
-  stopped_mapper_stats_ = stopped_mapper_stats_ + mapper_->stats();
-  if (loop_closer_) stopped_loop_stats_ = stopped_loop_stats_ + loop_closer_->stats();
+  retire_map_threads();
   const std::uint64_t old_id = atlas_->active_map_id();
   Map& map = atlas_->create_map();
   spdlog::info("atlas: tracking lost for {} frames, map {} kept, new map {} starts", lost_frames_, old_id,
@@ -293,9 +270,7 @@ void System::detect_and_merge() {
 
 bool System::merge_into(Map& target, const LoopDetection& detection) {
   Map& source = atlas_->active_map();
-  stop_map_threads();
-  stopped_mapper_stats_ = stopped_mapper_stats_ + mapper_->stats();
-  if (loop_closer_) stopped_loop_stats_ = stopped_loop_stats_ + loop_closer_->stats();
+  retire_map_threads();
   std::optional<MapMergeStats> merged;
   {
     std::scoped_lock lock(source.update_mutex(), target.update_mutex());
@@ -412,10 +387,15 @@ Trajectory System::keyframe_trajectory() const {
   return out;
 }
 
-LocalMapperStats System::mapper_stats() const { return stopped_mapper_stats_ + mapper_->stats(); }
+LocalMapperStats System::mapper_stats() const {
+  LocalMapperStats total = stopped_mapper_stats_;
+  return total += mapper_->stats();
+}
 
 LoopCloserStats System::loop_closer_stats() const {
-  return loop_closer_ ? stopped_loop_stats_ + loop_closer_->stats() : stopped_loop_stats_;
+  LoopCloserStats total = stopped_loop_stats_;
+  if (loop_closer_) total += loop_closer_->stats();
+  return total;
 }
 
 std::size_t System::num_keyframes() const {

@@ -152,8 +152,11 @@ class System {
   // Local mapping and loop closing for the active map.
   void start_map_threads(Map& map);
   // Stops them (local mapping first, so every keyframe it finishes still
-  // reaches loop closing and the place-recognition index); keeps their stats.
+  // reaches loop closing and the place-recognition index).
   void stop_map_threads();
+  // Stops the active map's threads and keeps their statistics, before the
+  // threads are replaced for another map.
+  void retire_map_threads();
   void start_new_map();
   // SystemOptions::load_map: the file's maps into the (empty) atlas.
   void load_maps(const std::filesystem::path& path);
