@@ -31,7 +31,6 @@
 //       view is blocked. --segmentation runs with the settings' segmentation.
 // Plain main, no Google Benchmark.
 #include <CLI/CLI.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -46,6 +45,7 @@
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"
 #include "stillslam/system/system.h"
 
@@ -135,15 +135,8 @@ Sequence render(const Args& a, int seed) {
   seq.settings.orb.n_features = 1000;
   seq.settings.bf = 40.0 / 535.4 * seq.settings.camera.fx;
   for (int i = 0; i < simulator.frame_count(); ++i) {
-    sim::SimFrame f = simulator.render_frame(i);
-    SensorFrame s;
-    s.index = static_cast<std::size_t>(i);
-    s.timestamp = f.timestamp;
-    s.color = f.bgr;
-    cv::cvtColor(f.bgr, s.gray, cv::COLOR_BGR2GRAY);
-    s.depth = f.depth;
-    s.name = "sim" + std::to_string(i);
-    seq.frames.push_back(std::move(s));
+    const sim::SimFrame f = simulator.render_frame(i);
+    seq.frames.push_back(sim::to_sensor_frame(f));
     seq.groundtruth.push_back({f.timestamp, f.T_world_cam});
   }
   return seq;

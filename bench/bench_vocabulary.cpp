@@ -20,7 +20,6 @@
 //       [--sizes 100,1000,5000] [--queries 200]
 // Plain main, no Google Benchmark.
 #include <CLI/CLI.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -37,6 +36,7 @@
 #include "stillslam/map/map.h"
 #include "stillslam/place/keyframe_database.h"
 #include "stillslam/place/vocabulary.h"
+#include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"
 #include "stillslam/system/system.h"
 #include "stillslam/tracking/frame_builder.h"
@@ -132,13 +132,7 @@ Views render_views(int count, int step, int offset, std::uint64_t seed) {
   for (int k = 0; k < count; ++k) {
     const int i = offset + k * step;
     const sim::SimFrame f = simulator.render_frame(i);
-    SensorFrame s;
-    s.index = static_cast<std::size_t>(i);
-    s.timestamp = f.timestamp;
-    s.color = f.bgr;
-    cv::cvtColor(f.bgr, s.gray, cv::COLOR_BGR2GRAY);
-    s.depth = f.depth;
-    Frame frame = builder.build(s, static_cast<std::uint64_t>(i), nullptr);
+    Frame frame = builder.build(sim::to_sensor_frame(f), static_cast<std::uint64_t>(i), nullptr);
     frame.set_pose((T_world0.inverse() * f.T_world_cam).inverse());  // world = first camera
     v.frames.push_back(std::move(frame));
   }

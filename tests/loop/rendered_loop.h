@@ -4,7 +4,6 @@
 // around the room in CameraMotion::kLoopPeriod seconds, then on past the
 // start) rendered in memory with sensor noise, run through the whole System
 // with loop closing on or off, and scored against the ground truth.
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -18,6 +17,7 @@
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"
 #include "stillslam/system/system.h"
 
@@ -79,14 +79,8 @@ inline RenderedLoop render_loop(const RenderedLoopOptions& o) {
   // Frames are independent (one RNG stream each): render on both cores.
   auto render = [&](std::size_t begin, std::size_t step) {
     for (std::size_t i = begin; i < out.frames.size(); i += step) {
-      sim::SimFrame f = simulator.render_frame(static_cast<int>(i));
-      SensorFrame& s = out.frames[i];
-      s.index = i;
-      s.timestamp = f.timestamp;
-      s.color = f.bgr;
-      cv::cvtColor(f.bgr, s.gray, cv::COLOR_BGR2GRAY);
-      s.depth = f.depth;
-      s.name = "loop" + std::to_string(i);
+      const sim::SimFrame f = simulator.render_frame(static_cast<int>(i));
+      out.frames[i] = sim::to_sensor_frame(f);
       out.groundtruth[i] = {f.timestamp, f.T_world_cam};
     }
   };

@@ -1,11 +1,11 @@
 #pragma once
 // Renders a short synthetic sequence in memory (sim::Simulator) as
 // SensorFrames plus ground truth, for end-to-end tests of the system.
-#include <opencv2/imgproc.hpp>
 
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"
 
 namespace stillslam::test {
@@ -42,19 +42,8 @@ inline SimSequence render_sim_sequence(const std::string& trajectory, int frames
   seq.stereo.baseline = opts.baseline;
   seq.stereo.rectified = true;
   for (int i = 0; i < simulator.frame_count(); ++i) {
-    sim::SimFrame f = simulator.render_frame(i);
-    SensorFrame s;
-    s.index = static_cast<std::size_t>(i);
-    s.timestamp = f.timestamp;
-    s.color = f.bgr;
-    cv::cvtColor(f.bgr, s.gray, cv::COLOR_BGR2GRAY);
-    if (stereo) {
-      s.right = f.right_gray;
-    } else {
-      s.depth = f.depth;
-    }
-    s.name = "sim" + std::to_string(i);
-    seq.frames.push_back(std::move(s));
+    const sim::SimFrame f = simulator.render_frame(i);
+    seq.frames.push_back(sim::to_sensor_frame(f, stereo ? SensorType::Stereo : SensorType::Rgbd));
     seq.groundtruth.push_back({f.timestamp, f.T_world_cam});
   }
   return seq;
