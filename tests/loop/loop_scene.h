@@ -9,15 +9,11 @@
 // true scene; the map (poses and points) drifts smoothly, so it is nearly
 // consistent locally (a few pixels over the reuse window) and wrong globally.
 #include <Eigen/Geometry>
-#include <array>
 #include <cmath>
 #include <map>
-#include <random>
 #include <vector>
 
-#include "stillslam/map/frame.h"
-#include "stillslam/map/map.h"
-#include "stillslam/place/vocabulary.h"
+#include "loop/cylinder_world.h"
 
 namespace stillslam::test {
 
@@ -34,29 +30,11 @@ class LoopScene {
     std::uint32_t seed = 5;
   };
 
-  explicit LoopScene(Options options) : options_(options) {
-    CameraCalibration calib;
-    calib.fx = 500;
-    calib.fy = 500;
-    calib.cx = 320;
-    calib.cy = 240;
-    calib.width = 640;
-    calib.height = 480;
-    setup_ = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 40.0 / 500 * 40);
-    std::mt19937 rng(options.seed);
-    std::uniform_real_distribution<double> angle(0, 2 * M_PI), height(-1.5, 1.5);
-    std::uniform_int_distribution<int> byte(0, 255);
-    for (int i = 0; i < options.num_points; ++i) {
-      const double a = angle(rng);
-      points_.emplace_back(options.wall_radius * std::sin(a), height(rng), options.wall_radius * std::cos(a));
-      std::array<std::uint8_t, 32> d{};
-      for (auto& b : d) b = static_cast<std::uint8_t>(byte(rng));
-      descriptors_.push_back(d);
-    }
-  }
+  explicit LoopScene(Options options)
+      : options_(options), world_(options.num_points, options.wall_radius, options.seed) {}
   LoopScene() : LoopScene(Options{}) {}
 
-  const std::shared_ptr<CameraSetup>& setup() const { return setup_; }
+  const std::shared_ptr<CameraSetup>& setup() const { return world_.setup(); }
   double angle_of(int i) const { return options_.step_deg * i * M_PI / 180.0; }
 
   Eigen::Isometry3d true_T_world_cam(int i) const {
@@ -85,82 +63,18 @@ class LoopScene {
   // A frame with exact measurements from a true pose (no pose set): for
   // relocalization queries.
   Frame make_frame(std::uint64_t id, const Eigen::Isometry3d& T_world_cam_true) const {
-    const Eigen::Isometry3d T_cw = T_world_cam_true.inverse();
-    std::vector<cv::KeyPoint> kps;
-    std::vector<float> u_right, depth;
-    cv::Mat desc(0, 32, CV_8U);
-    for (std::size_t s = 0; s < points_.size(); ++s) {
-      const Eigen::Vector3d p = T_cw * points_[s];
-      const Eigen::Vector2d uv = setup_->camera.project(p);
-      if (p.z() <= 0.3 || !setup_->camera.in_image(uv)) continue;
-      kps.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.f, 0.f, 1.f, 0);
-      depth.push_back(static_cast<float>(p.z()));
-      u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
-      desc.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[s].data())).clone());
-    }
-    return Frame(id, 0.1 * static_cast<double>(id), setup_, kps, kps, desc, u_right, depth);
+    return world_.make_frame(id, T_world_cam_true);
   }
 
   // Adds keyframe i (call with i = 0, 1, 2, ... in order).
   KeyFramePtr add_keyframe(int i) {
-    const Eigen::Isometry3d T_cw_true = true_T_world_cam(i).inverse();
-    const Eigen::Isometry3d T_wc_drift = drift(i) * true_T_world_cam(i);
-    std::vector<cv::KeyPoint> kps;
-    std::vector<float> u_right, depth;
-    std::vector<MapPointPtr> slots;
-    cv::Mat desc(0, 32, CV_8U);
-    std::vector<std::pair<std::size_t, bool>> point_of_keypoint;  // scene index, new?
-    for (std::size_t s = 0; s < points_.size(); ++s) {
-      const Eigen::Vector3d p = T_cw_true * points_[s];  // measurements are exact
-      const Eigen::Vector2d uv = setup_->camera.project(p);
-      if (p.z() <= 0.3 || !setup_->camera.in_image(uv)) continue;
-      const auto it = live_.find(s);
-      const bool reuse = it != live_.end() && it->second.second + options_.reuse_window >= i;
-      kps.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.f, 0.f, 1.f, 0);
-      depth.push_back(static_cast<float>(p.z()));
-      u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
-      desc.push_back(cv::Mat(1, 32, CV_8U, descriptors_[s].data()).clone());
-      point_of_keypoint.emplace_back(s, !reuse);
-    }
-    Frame frame(static_cast<std::uint64_t>(i), 0.1 * i, setup_, kps, kps, desc, u_right, depth);
-    frame.set_pose(T_wc_drift.inverse());
-    KeyFramePtr kf = map_.create_keyframe(frame);
-    for (std::size_t k = 0; k < point_of_keypoint.size(); ++k) {
-      const auto [s, fresh] = point_of_keypoint[k];
-      if (fresh) {
-        live_[s] = {map_.create_map_point(drift(i) * points_[s], kf.get()), i};
-      }
-      const MapPointPtr& mp = live_[s].first;
-      mp->add_observation(kf.get(), k);
-      kf->set_map_point(k, mp);
-    }
-    for (const auto& mp : kf->map_points()) {
-      if (!mp) continue;
-      mp->compute_distinctive_descriptor();
-      mp->update_normal_and_depth(setup_->pyramid);
-    }
-    kf->update_connections();
-    return kf;
+    return world_.add_keyframe(map_, static_cast<std::uint64_t>(i), true_T_world_cam(i), drift(i), live_, i,
+                               options_.reuse_window);
   }
 
   Map& map() { return map_; }
 
-  // A small vocabulary over the scene's descriptors.
-  Vocabulary train_vocabulary() const {
-    std::vector<cv::Mat> images;
-    for (std::size_t start = 0; start < descriptors_.size(); start += 300) {
-      cv::Mat d(0, 32, CV_8U);
-      for (std::size_t s = start; s < std::min(descriptors_.size(), start + 300); ++s) {
-        d.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[s].data())).clone());
-      }
-      images.push_back(d);
-    }
-    VocabularyOptions o;
-    o.branching = 8;
-    o.levels = 4;  // about one word per scene point: unrelated views share few words
-    o.seed = 1;
-    return Vocabulary::train(images, o);
-  }
+  Vocabulary train_vocabulary() const { return world_.train_vocabulary(); }
 
   // Largest camera-centre error of the map's keyframes against the truth.
   double max_position_error() const {
@@ -183,11 +97,9 @@ class LoopScene {
 
  private:
   Options options_;
-  std::shared_ptr<CameraSetup> setup_;
-  std::vector<Eigen::Vector3d> points_;
-  std::vector<std::array<std::uint8_t, 32>> descriptors_;
+  CylinderWorld world_;
   Map map_;
-  std::map<std::size_t, std::pair<MapPointPtr, int>> live_;  // scene point -> (map point, creating keyframe)
+  CylinderWorld::LivePoints live_;
 };
 
 }  // namespace stillslam::test
