@@ -33,6 +33,7 @@
 #include <unordered_set>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/fnv1a.h"
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map_file_bytes.h"
 
@@ -49,15 +50,6 @@ constexpr std::size_t kChecksumBytes = 8;
 constexpr std::uint64_t kNone = ~0ULL;
 constexpr std::uint32_t kNoCompression = 0;
 constexpr std::uint32_t kZstd = 1;
-
-std::uint64_t fnv1a(const char* p, std::size_t n) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(p[i]);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 
 std::string rerun_hint() { return "re-create it with `stillslam run --save-map`"; }
 

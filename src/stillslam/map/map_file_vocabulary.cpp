@@ -4,29 +4,13 @@
 #include <array>
 #include <cstring>
 
+#include "stillslam/core/fnv1a.h"
 #include "stillslam/map/map_file.h"
 #include "stillslam/place/vocabulary.h"
 
 namespace stillslam {
 
 namespace {
-
-class Fnv1a {
- public:
-  template <typename T>
-  void add(const T& value) {
-    unsigned char bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));
-    for (unsigned char b : bytes) {
-      h_ ^= b;
-      h_ *= 0x100000001b3ULL;
-    }
-  }
-  std::uint64_t value() const { return h_; }
-
- private:
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
-};
 
 // splitmix64: a fixed, platform-independent stream of probe descriptors.
 std::uint64_t splitmix64(std::uint64_t& state) {

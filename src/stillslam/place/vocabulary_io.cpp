@@ -21,6 +21,7 @@
 #include <string>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/fnv1a.h"
 #include "stillslam/place/vocabulary.h"
 
 namespace stillslam {
@@ -32,15 +33,6 @@ namespace {
 constexpr char kMagic[8] = {'S', 'T', 'I', 'L', 'L', 'V', 'O', 'C'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 8 + 4 * 4 + 8 * 2 + 4 * 2;
-
-std::uint64_t fnv1a(const char* p, std::size_t n) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(p[i]);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 
 class Writer {
  public:
