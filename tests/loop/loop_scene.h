@@ -13,7 +13,7 @@
 #include <map>
 #include <vector>
 
-#include "loop/cylinder_world.h"
+#include "cylinder_world.h"  // same folder: benches include these headers too
 
 namespace stillslam::test {
 

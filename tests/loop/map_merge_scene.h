@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "loop/cylinder_world.h"
+#include "cylinder_world.h"  // same folder: benches include these headers too
 
 namespace stillslam::test {
 
