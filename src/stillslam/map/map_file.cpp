@@ -32,15 +32,12 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/core/byte_io.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/fnv1a.h"
 #include "stillslam/map/frame.h"
-#include "stillslam/map/map_file_bytes.h"
 
 namespace stillslam {
-
-using map_file_detail::ByteReader;
-using map_file_detail::ByteWriter;
 
 namespace {
 
@@ -52,6 +49,13 @@ constexpr std::uint32_t kNoCompression = 0;
 constexpr std::uint32_t kZstd = 1;
 
 std::string rerun_hint() { return "re-create it with `stillslam run --save-map`"; }
+
+// A payload reader whose errors name the file (`name`) and say how to fix it.
+ByteReader map_file_reader(const char* data, std::size_t size, const std::string& name) {
+  return ByteReader(data, size, [name](const std::string& detail) {
+    return Error(name + ": corrupt map file (" + detail + "); " + rerun_hint());
+  });
+}
 
 // The camera numbers that must agree between the map and the running system.
 struct CameraRecord {
@@ -492,7 +496,7 @@ MapFileContents load_map_file(const std::filesystem::path& path, const MapFileCo
   if (bytes.size() < kHeaderBytes + kChecksumBytes) {
     throw Error(name + ": truncated map file (" + std::to_string(bytes.size()) + " bytes); " + rerun_hint());
   }
-  ByteReader header(bytes.data() + sizeof(kMagic), kHeaderBytes - sizeof(kMagic), name);
+  ByteReader header = map_file_reader(bytes.data() + sizeof(kMagic), kHeaderBytes - sizeof(kMagic), name);
   const auto version = header.get<std::uint32_t>();
   if (version != kMapFileVersion) {
     throw Error(name + ": map file format version " + std::to_string(version) + ", this build reads version " +
@@ -525,7 +529,7 @@ MapFileContents load_map_file(const std::filesystem::path& path, const MapFileCo
     throw Error(name + ": corrupt map file (unknown payload compression " + std::to_string(compression) + "); " +
                 rerun_hint());
   }
-  ByteReader payload(data, raw, name);
+  ByteReader payload = map_file_reader(data, raw, name);
   return MapFileAccess::read_payload(payload, path, expected, ids);
 }
 

@@ -13,75 +13,24 @@
 // Nodes are in breadth-first order, so a node's children are the ids
 // [first_child, first_child + child_count). With k = 10, L = 5 a file is a few
 // MB and loads in a few milliseconds (one read, no parsing of text).
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "stillslam/core/byte_io.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/fnv1a.h"
 #include "stillslam/place/vocabulary.h"
 
 namespace stillslam {
 
-static_assert(std::endian::native == std::endian::little, "vocabulary files are little-endian");
-
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'I', 'L', 'L', 'V', 'O', 'C'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 8 + 4 * 4 + 8 * 2 + 4 * 2;
-
-class Writer {
- public:
-  template <typename T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const char*>(&v);
-    bytes_.insert(bytes_.end(), p, p + sizeof(T));
-  }
-  template <typename T>
-  void put_all(const std::vector<T>& v) {
-    const auto* p = reinterpret_cast<const char*>(v.data());
-    bytes_.insert(bytes_.end(), p, p + sizeof(T) * v.size());
-  }
-  std::vector<char>& bytes() { return bytes_; }
-
- private:
-  std::vector<char> bytes_;
-};
-
-// Bounds-checked sequential reads from the loaded file.
-class Reader {
- public:
-  Reader(const std::vector<char>& bytes, std::string file) : bytes_(bytes), file_(std::move(file)) {}
-  template <typename T>
-  T get() {
-    T v;
-    need(sizeof(T));
-    std::memcpy(&v, bytes_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return v;
-  }
-  template <typename T>
-  void get_all(std::vector<T>& v, std::size_t n) {
-    need(sizeof(T) * n);
-    v.resize(n);
-    std::memcpy(v.data(), bytes_.data() + pos_, sizeof(T) * n);
-    pos_ += sizeof(T) * n;
-  }
-
- private:
-  void need(std::size_t n) const {
-    if (pos_ + n > bytes_.size())
-      throw Error("vocabulary file '" + file_ + "' is truncated (" + std::to_string(bytes_.size()) +
-                  " bytes); re-copy it or rebuild it with scripts/train_vocabulary");
-  }
-  const std::vector<char>& bytes_;
-  std::string file_;
-  std::size_t pos_ = 0;
-};
 
 // A DBoW2 text vocabulary starts with "k L scoring weighting" on one line.
 bool looks_like_dbow2_text(const std::vector<char>& bytes) {
@@ -116,8 +65,8 @@ std::vector<char> read_file(const std::filesystem::path& path) {
 
 void Vocabulary::save(const std::filesystem::path& path) const {
   if (empty()) throw Error("cannot save an empty vocabulary to '" + path.string() + "'");
-  Writer w;
-  w.bytes().insert(w.bytes().end(), kMagic, kMagic + 8);
+  ByteWriter w;
+  w.put_bytes(kMagic, 8);
   w.put(kVersion);
   w.put(static_cast<std::uint32_t>(branching_));
   w.put(static_cast<std::uint32_t>(levels_));
@@ -157,7 +106,11 @@ class VocabularyReader {
       throw Error("'" + file + "' is not a stillslam vocabulary (no STILLVOC header); use "
                   "vocab/orb_vocabulary.bin or train one with `stillslam vocab train`");
     }
-    Reader r(bytes, file);
+    // Any read past the end means the file was cut short.
+    ByteReader r(bytes.data(), bytes.size(), [&](const std::string&) {
+      return Error("vocabulary file '" + file + "' is truncated (" + std::to_string(bytes.size()) +
+                   " bytes); re-copy it or rebuild it with scripts/train_vocabulary");
+    });
     r.get<std::uint64_t>();  // magic
     const auto version = r.get<std::uint32_t>();
     if (version != kVersion)

@@ -1,19 +1,22 @@
 #pragma once
-// Little-endian byte buffer writer/reader for the map file (map_file.cpp).
-// The reader checks every read against the buffer end and reports running
-// past it through a callback-built Error, so a truncated or corrupt payload
-// never reads out of bounds.
+// Little-endian byte buffer writer/reader for the project's binary files (map
+// files, the vocabulary). The reader checks every read against the buffer end,
+// so a truncated or corrupt file never reads out of bounds; the Error it then
+// throws is built by the caller, which knows the file and how to fix it.
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "stillslam/core/error.h"
 
-namespace stillslam::map_file_detail {
+namespace stillslam {
 
-static_assert(std::endian::native == std::endian::little, "map files are little-endian");
+static_assert(std::endian::native == std::endian::little, "the binary files are little-endian");
 
 class ByteWriter {
  public:
@@ -21,6 +24,12 @@ class ByteWriter {
   void put(T value) {
     static_assert(std::is_arithmetic_v<T>);
     bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  // Every element's bytes in order (numbers, or fixed-size arrays of them).
+  template <typename T>
+  void put_all(const std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put_bytes(values.data(), sizeof(T) * values.size());
   }
   void put_bytes(const void* data, std::size_t n) { bytes_.append(static_cast<const char*>(data), n); }
   void put_string(const std::string& s) {
@@ -33,10 +42,14 @@ class ByteWriter {
   std::string bytes_;
 };
 
+// Builds the Error a ByteReader throws from what went wrong (e.g. "unexpected
+// end of data"); the caller's wording names the file and what to do.
+using ByteReadError = std::function<Error(const std::string& detail)>;
+
 class ByteReader {
  public:
-  // `what` names the file in errors.
-  ByteReader(const char* data, std::size_t size, std::string what) : p_(data), end_(data + size), what_(std::move(what)) {}
+  ByteReader(const char* data, std::size_t size, ByteReadError make_error)
+      : p_(data), end_(data + size), make_error_(std::move(make_error)) {}
 
   template <typename T>
   T get() {
@@ -44,6 +57,14 @@ class ByteReader {
     T value;
     std::memcpy(&value, take(sizeof(T)), sizeof(T));
     return value;
+  }
+  // `n` elements into `values` (replacing its contents).
+  template <typename T>
+  void get_all(std::vector<T>& values, std::size_t n) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* p = take(sizeof(T) * n);
+    values.resize(n);
+    if (n > 0) std::memcpy(values.data(), p, sizeof(T) * n);
   }
   const char* get_bytes(std::size_t n) { return take(n); }
   std::string get_string() {
@@ -58,9 +79,7 @@ class ByteReader {
     return n;
   }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
-  [[noreturn]] void fail(const std::string& detail) const {
-    throw Error(what_ + ": corrupt map file (" + detail + "); re-create it with `stillslam run --save-map`");
-  }
+  [[noreturn]] void fail(const std::string& detail) const { throw make_error_(detail); }
 
  private:
   const char* take(std::size_t n) {
@@ -72,7 +91,7 @@ class ByteReader {
 
   const char* p_;
   const char* end_;
-  std::string what_;
+  ByteReadError make_error_;
 };
 
-}  // namespace stillslam::map_file_detail
+}  // namespace stillslam
