@@ -2,11 +2,13 @@
 
 #include <unordered_map>
 
+#include "stillslam/map/ba_observations.h"
+
 namespace stillslam {
 
 GlobalBundleAdjustmentProblem snapshot_global_problem(const Map& map) {
   GlobalBundleAdjustmentProblem p;
-  std::unordered_map<const KeyFrame*, std::size_t> kf_index;
+  BaKeyFrameIndex kf_index;
   for (const KeyFramePtr& kf : map.keyframes()) {
     if (kf->is_bad()) continue;
     kf_index.emplace(kf.get(), p.keyframes.size());
@@ -18,22 +20,7 @@ GlobalBundleAdjustmentProblem snapshot_global_problem(const Map& map) {
   const ScalePyramid& pyramid = p.setup->pyramid;
   for (const MapPointPtr& mp : map.map_points()) {
     if (mp->is_bad()) continue;
-    const std::size_t point = p.points.size();
-    bool observed = false;
-    for (const auto& [kf, idx] : mp->observations()) {
-      const auto it = kf_index.find(kf);
-      if (it == kf_index.end()) continue;
-      BaObservation o;
-      o.keyframe = it->second;
-      o.point = point;
-      const cv::KeyPoint& kp = kf->keypoint(idx);
-      o.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-      o.u_right = kf->u_right(idx);
-      o.inv_sigma2 = pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
-      p.ba_observations.push_back(o);
-      observed = true;
-    }
-    if (!observed) continue;
+    if (append_ba_observations(*mp, p.points.size(), kf_index, pyramid, p.ba_observations) == 0) continue;
     p.points.push_back(mp);
     p.ba_points.push_back({mp->id(), mp->position()});
   }

@@ -1,13 +1,14 @@
 #include "stillslam/mapping/local_bundle_adjustment.h"
 
-#include <map>
 #include <unordered_map>
+
+#include "stillslam/map/ba_observations.h"
 
 namespace stillslam {
 
 LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
   LocalBundleAdjustmentProblem problem;
-  std::map<KeyFrame*, std::size_t, KeyFrameIdLess> kf_index;
+  BaKeyFrameIndex kf_index;
   auto add_keyframe = [&](KeyFrame* k, bool fixed) {
     if (!kf_index.emplace(k, problem.keyframes.size()).second) return;
     problem.keyframes.push_back(k->shared_from_this());
@@ -50,19 +51,8 @@ LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
 
   const ScalePyramid& pyramid = kf.setup().pyramid;
   for (std::size_t p = 0; p < problem.points.size(); ++p) {
-    for (const auto& [k, idx] : problem.points[p]->observations()) {
-      const auto it = kf_index.find(k);
-      if (it == kf_index.end()) continue;
-      BaObservation o;
-      o.keyframe = it->second;
-      o.point = p;
-      const cv::KeyPoint& kp = k->keypoint(idx);
-      o.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-      o.u_right = k->u_right(idx);
-      o.inv_sigma2 = pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
-      problem.ba_observations.push_back(o);
-      problem.observation_index.push_back(idx);
-    }
+    append_ba_observations(*problem.points[p], p, kf_index, pyramid, problem.ba_observations,
+                           &problem.observation_index);
   }
   return problem;
 }
