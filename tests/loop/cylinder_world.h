@@ -6,7 +6,6 @@
 // a reuse window of the one that created it.
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -14,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "../common/synthetic_camera.h"  // relative: benches include this header too
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map.h"
 #include "stillslam/place/vocabulary.h"
@@ -25,24 +25,13 @@ class CylinderWorld {
   // Scene point -> (its map point, the keyframe count that created it).
   using LivePoints = std::map<std::size_t, std::pair<MapPointPtr, int>>;
 
-  CylinderWorld(int num_points, double wall_radius, std::uint32_t seed) {
-    CameraCalibration calib;
-    calib.fx = 500;
-    calib.fy = 500;
-    calib.cx = 320;
-    calib.cy = 240;
-    calib.width = 640;
-    calib.height = 480;
-    setup_ = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 40.0 / 500 * 40);
+  CylinderWorld(int num_points, double wall_radius, std::uint32_t seed) : setup_(synthetic_camera_setup()) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> angle(0, 2 * M_PI), height(-1.5, 1.5);
-    std::uniform_int_distribution<int> byte(0, 255);
     for (int i = 0; i < num_points; ++i) {
       const double a = angle(rng);
       points_.emplace_back(wall_radius * std::sin(a), height(rng), wall_radius * std::cos(a));
-      std::array<std::uint8_t, 32> d{};
-      for (auto& b : d) b = static_cast<std::uint8_t>(byte(rng));
-      descriptors_.push_back(d);
+      descriptors_.push_back(random_descriptor(rng));
     }
   }
 
@@ -89,7 +78,7 @@ class CylinderWorld {
     for (std::size_t start = 0; start < descriptors_.size(); start += 300) {
       cv::Mat d(0, 32, CV_8U);
       for (std::size_t s = start; s < std::min(descriptors_.size(), start + 300); ++s) {
-        d.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[s].data())).clone());
+        d.push_back(descriptor_row(descriptors_[s]));
       }
       images.push_back(d);
     }
@@ -120,7 +109,7 @@ class CylinderWorld {
       kps.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()), 31.f, 0.f, 1.f, 0);
       depth.push_back(static_cast<float>(p.z()));
       u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
-      desc.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[s].data())).clone());
+      desc.push_back(descriptor_row(descriptors_[s]));
       scene_points.push_back(s);
     }
     return {Frame(id, 0.1 * static_cast<double>(id), setup_, kps, kps, desc, u_right, depth), std::move(scene_points)};
@@ -128,7 +117,7 @@ class CylinderWorld {
 
   std::shared_ptr<CameraSetup> setup_;
   std::vector<Eigen::Vector3d> points_;
-  std::vector<std::array<std::uint8_t, 32>> descriptors_;
+  std::vector<SceneDescriptor> descriptors_;
 };
 
 }  // namespace stillslam::test

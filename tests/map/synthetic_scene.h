@@ -4,35 +4,23 @@
 // projecting the points with a known pose (keypoints at level 0, exact depth
 // and virtual right coordinate), so matches can be checked by point identity.
 #include <Eigen/Geometry>
-#include <array>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "../common/synthetic_camera.h"
 #include "stillslam/map/frame.h"
 
 namespace stillslam::test {
 
 class SyntheticScene {
  public:
-  explicit SyntheticScene(int num_points = 1500, std::uint32_t seed = 7) {
-    CameraCalibration calib;
-    calib.fx = 500;
-    calib.fy = 500;
-    calib.cx = 320;
-    calib.cy = 240;
-    calib.width = 640;
-    calib.height = 480;
-    OrbOptions orb;
-    setup_ = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(orb), 40.0 / 500 * 40);
+  explicit SyntheticScene(int num_points = 1500, std::uint32_t seed = 7) : setup_(synthetic_camera_setup()) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> xy(-3.0, 3.0), z(2.0, 5.0);
-    std::uniform_int_distribution<int> byte(0, 255);
     for (int i = 0; i < num_points; ++i) {
       points_.emplace_back(xy(rng), xy(rng), z(rng));
-      std::array<std::uint8_t, 32> d{};
-      for (auto& b : d) b = static_cast<std::uint8_t>(byte(rng));
-      descriptors_.push_back(d);
+      descriptors_.push_back(random_descriptor(rng));
     }
   }
 
@@ -56,7 +44,7 @@ class SyntheticScene {
       kps.push_back(kp);
       depth.push_back(static_cast<float>(p.z()));
       u_right.push_back(static_cast<float>(uv.x() - setup_->camera.bf() / p.z()));
-      desc.push_back(cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(descriptors_[i].data())).clone());
+      desc.push_back(descriptor_row(descriptors_[i]));
       ids.push_back(i);
     }
     if (point_of_keypoint) *point_of_keypoint = ids;
@@ -66,7 +54,7 @@ class SyntheticScene {
  private:
   std::shared_ptr<CameraSetup> setup_;
   std::vector<Eigen::Vector3d> points_;
-  std::vector<std::array<std::uint8_t, 32>> descriptors_;
+  std::vector<SceneDescriptor> descriptors_;
 };
 
 inline Eigen::Isometry3d pose_at(double x, double y = 0, double yaw_deg = 0) {
