@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/io/image_files.h"
 #include "stillslam/io/image_io.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/segmentation/coco_classes.h"
@@ -37,20 +38,6 @@ struct SegmentArgs {
   bool agnostic_nms = false;
 };
 
-bool is_image_file(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tif" || ext == ".tiff";
-}
-
-std::vector<fs::path> images_in(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && is_image_file(e.path())) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // A folder of images, or a dataset folder whose color/left images live in a
 // known subfolder (TUM rgb/, EuRoC mav0/cam0/data, KITTI image_2 or image_0).
 std::vector<fs::path> sequence_images(const fs::path& dir) {
@@ -58,7 +45,7 @@ std::vector<fs::path> sequence_images(const fs::path& dir) {
   for (const fs::path& sub : {fs::path("."), fs::path("rgb"), fs::path("mav0/cam0/data"), fs::path("image_2"),
                              fs::path("image_0"), fs::path("cam0/data")}) {
     if (!fs::is_directory(dir / sub)) continue;
-    auto files = images_in(dir / sub);
+    auto files = image_files_in(dir / sub);
     if (!files.empty()) return files;
   }
   throw Error("no images (.png, .jpg, ...) in '" + dir.string() +

@@ -22,6 +22,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/features/orb_extractor.h"
+#include "stillslam/io/image_files.h"
 #include "stillslam/place/keyframe_database.h"
 #include "stillslam/place/vocabulary.h"
 
@@ -30,30 +31,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool is_image_file(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".pgm" || ext == ".tif" ||
-         ext == ".tiff";
-}
-
-std::vector<fs::path> images_directly_in(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && is_image_file(e.path())) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // A folder's images; for dataset folders the colour/left (and right) images
 // in the usual subfolders (TUM rgb/, EuRoC mav0/cam0,cam1/data, KITTI image_N).
 std::vector<fs::path> images_in_folder(const fs::path& dir) {
-  auto files = images_directly_in(dir);
+  auto files = image_files_in(dir);
   if (!files.empty()) return files;
   for (const char* sub : {"rgb", "mav0/cam0/data", "mav0/cam1/data", "cam0/data", "cam1/data", "image_0", "image_1",
                           "image_2", "image_3"}) {
     if (!fs::is_directory(dir / sub)) continue;
-    auto more = images_directly_in(dir / sub);
+    auto more = image_files_in(dir / sub);
     files.insert(files.end(), more.begin(), more.end());
   }
   if (files.empty())

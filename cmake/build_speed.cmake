@@ -31,10 +31,8 @@ set(STILLSLAM_UNITY_BATCH 8 CACHE STRING "Source files per unity translation uni
 # file of the same module inside a unity TU. Renaming the clashing name (the
 # module owner's call) lets the file join its module's batches again.
 set(STILLSLAM_UNITY_EXCLUDE
-  src/stillslam/io/trajectory.cpp        # its parse_double(token) hides text_table.h's parse_double
   src/stillslam/sim/dynamic_objects.cpp  # kTwoPi, also defined in camera_motion.cpp
   src/stillslam/sim/settings_files.cpp   # open(path), also defined in sequence_writer.cpp
-  apps/cmd_segment.cpp                   # is_image_file, also defined in cmd_vocab.cpp
 )
 
 if(CCACHE_PROGRAM AND STILLSLAM_PCH)

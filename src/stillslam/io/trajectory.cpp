@@ -52,7 +52,7 @@ std::vector<std::string> split(const std::string& text, bool commas) {
   return tokens;
 }
 
-std::optional<double> parse_double(const std::string& token) {
+std::optional<double> parse_finite_number(const std::string& token) {
   double value = 0;
   const char* begin = token.data();
   const char* end = begin + token.size();
@@ -78,7 +78,7 @@ std::optional<double> parse_nanoseconds_as_seconds(const std::string& token) {
   if (ec == std::errc() && ptr == integral.data() + integral.size() && fraction_is_zero) {
     return static_cast<double>(ns / 1'000'000'000) + static_cast<double>(ns % 1'000'000'000) * 1e-9;
   }
-  const auto value = parse_double(token);
+  const auto value = parse_finite_number(token);
   if (!value) return std::nullopt;
   return *value * 1e-9;
 }
@@ -96,7 +96,7 @@ std::vector<double> parse_numbers(const fs::path& path, const Line& line, const 
   }
   std::vector<double> values(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const auto value = parse_double(tokens[i]);
+    const auto value = parse_finite_number(tokens[i]);
     if (!value) fail(path, line.number, "'" + tokens[i] + "' is not a finite number (" + layout + ")");
     values[i] = *value;
   }
@@ -126,11 +126,11 @@ bool is_comment_or_blank(const std::string& text) {
 
 bool starts_with_number(const std::string& text, bool commas) {
   const auto tokens = split(trim(text), commas);
-  return !tokens.empty() && parse_double(tokens.front()).has_value();
+  return !tokens.empty() && parse_finite_number(tokens.front()).has_value();
 }
 
 double parse_stamp(const fs::path& path, const Line& line, const std::string& token) {
-  const auto value = parse_double(token);
+  const auto value = parse_finite_number(token);
   if (!value) fail(path, line.number, "timestamp '" + token + "' is not a finite number");
   if (std::abs(*value) > kNanosecondStampThreshold) return *parse_nanoseconds_as_seconds(token);
   return *value;
@@ -214,7 +214,7 @@ Trajectory parse_kitti(const fs::path& path, const std::vector<Line>& lines) {
 // EuRoC stamps are nanoseconds. A stamp with a real fractional part below
 // 1e12 can only be seconds (someone's csv export), so it is kept as is.
 double parse_euroc_stamp(const fs::path& path, const Line& line, const std::string& token) {
-  const auto value = parse_double(token);
+  const auto value = parse_finite_number(token);
   if (!value) fail(path, line.number, "timestamp '" + token + "' is not a finite number");
   if (*value < kNanosecondStampThreshold && *value != std::floor(*value)) return *value;
   return *parse_nanoseconds_as_seconds(token);
