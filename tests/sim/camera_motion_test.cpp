@@ -29,17 +29,28 @@ TEST(CameraMotion, WalkingXyzReplaysTheTumGroundTruth) {
   EXPECT_LT((m.pose_at(mid).translation() - expected).norm(), 1e-6);  // stamps ~1.3e9 s: 1e-7 s resolution
 }
 
-TEST(CameraMotion, HalfSphereLooksAtItsCentreFromOneMetre) {
+TEST(CameraMotion, HalfSphereMovesOnAHalfSphereFacingTheDesk) {
+  // TUM fr3/walking_halfsphere: moved over a half sphere of ~1 m diameter,
+  // facing the desk and the people, at ~0.2 m/s.
   const CameraMotion m = CameraMotion::create("halfsphere", kData, 4);
-  const Eigen::Vector3d centre = SceneLayout::desk_centre() + Eigen::Vector3d(0, 0, 0.1);
-  for (double t : {0.0, 3.3, 7.1, 12.0}) {
+  const Eigen::Vector3d centre(0, 0.35, 0);
+  double path = 0, max_angle = 0;
+  Eigen::Isometry3d prev = m.pose_at(0);
+  for (double t = 0.1; t <= 16.0 + 1e-9; t += 0.1) {
     const Eigen::Isometry3d T = m.pose_at(t);
-    const Eigen::Vector3d c_cam = T.inverse() * centre;
-    EXPECT_NEAR(c_cam.norm(), 1.0, 1e-9);
-    EXPECT_NEAR(c_cam.x(), 0, 1e-9);  // on the optical axis
-    EXPECT_NEAR(c_cam.y(), 0, 1e-9);
-    EXPECT_GT(T.translation().z(), centre.z());  // upper half sphere
+    EXPECT_NEAR((T.translation() - centre).norm(), 0.5, 1e-9);
+    EXPECT_LE(T.translation().y(), centre.y());  // the half away from the desk
+    const Eigen::Vector3d desk = T.inverse() * SceneLayout::desk_centre();
+    EXPECT_GT(desk.z(), 1.2);  // in front, 1.2 m or more away
+    EXPECT_LT(std::abs(desk.x()) / desk.z(), 0.6);  // inside the view
+    EXPECT_LT(std::abs(desk.y()) / desk.z(), 0.45);
+    path += (T.translation() - prev.translation()).norm();
+    max_angle = std::max(max_angle, Eigen::AngleAxisd(T.linear().transpose() * m.pose_at(0).linear()).angle());
+    prev = T;
   }
+  EXPECT_GT(path / 16.0, 0.12);  // m/s over one turn
+  EXPECT_LT(path / 16.0, 0.35);
+  EXPECT_GT(max_angle, 0.3);  // it turns, too (rad)
 }
 
 TEST(CameraMotion, RpyRotatesAboutAFixedPointAndStaticBarelyMoves) {

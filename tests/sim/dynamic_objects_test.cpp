@@ -62,6 +62,31 @@ TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
   EXPECT_GT(standing_frames, 60);  // pauses and stops in view happen
 }
 
+TEST(DynamicObjects, PeopleWhoStopInViewShiftSlowly) {
+  // Standing people drift slowly (0.05-0.4 m/s) rather than freeze: the motion
+  // a geometric outlier test cannot tell from noise.
+  DynamicObjectsOptions o;
+  o.walking = 3;
+  o.duration = 30;
+  const std::vector<cv::Size> textures(4, cv::Size(640, 480));
+  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(camera, 30), people_textures(),
+                           textures, 5);
+  int stopping = 0, slow_frames = 0;
+  for (const PersonTrack& p : dyn.people()) {
+    if (p.stop_time == 0) continue;
+    ++stopping;
+    EXPECT_GT(p.dawdle.norm(), 0.02);
+    EXPECT_LE(p.dawdle.norm(), 0.3 + 1e-9);
+    for (int k = 1; k <= 900; ++k) {
+      const double speed = (dyn.person_foot(p, k / 30.0) - dyn.person_foot(p, (k - 1) / 30.0)).norm() * 30;
+      slow_frames += speed > 0.02 && speed < 0.4;
+    }
+  }
+  EXPECT_EQ(stopping, 2);  // every person but the first stops
+  EXPECT_GT(slow_frames, 150);
+}
+
 TEST(DynamicObjects, BoxIsDynamicOnlyWhileCarried) {
   DynamicObjectsOptions o;
   o.walking = 0;

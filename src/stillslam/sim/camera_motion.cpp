@@ -99,13 +99,19 @@ Eigen::Isometry3d CameraMotion::pose_at(double dt) const {
       return T;
     }
     case Kind::HalfSphere: {
-      // On a 1 m half sphere around a point above the desk, always looking at it.
-      const Eigen::Vector3d centre = SceneLayout::desk_centre() + Eigen::Vector3d(0, 0, 0.1);
-      const double az = 1.0 * std::sin(kTwoPi * t / 24.0 + phase_[0]);
-      const double el = 0.55 + 0.25 * std::sin(kTwoPi * t / 15.0 + phase_[1]);
-      const Eigen::Vector3d eye =
-          centre + Eigen::Vector3d(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
-      return look_at(eye, centre);
+      // Like TUM fr3/walking_halfsphere: the camera is carried over a half
+      // sphere of ~1 m diameter (centre 0.35 m in front of the origin, the
+      // half facing away from the desk) while it looks at the desk area; the
+      // aim point wanders over the desk so the camera also yaws and pitches.
+      // ~0.2 m/s and up to ~25 deg/s, close to the real sequence.
+      constexpr double kRadius = 0.5;
+      const double az = 1.0 * std::sin(kTwoPi * t / 16.0 + phase_[0]);
+      const double el = 0.5 * std::sin(kTwoPi * t / 11.0 + phase_[1]);
+      const Eigen::Vector3d eye = Eigen::Vector3d(0, 0.35, 0) +
+          kRadius * Eigen::Vector3d(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+      const Eigen::Vector3d aim(0.35 * std::sin(kTwoPi * t / 13.0 + phase_[2]), SceneLayout::desk_centre().y(),
+                                -0.35 + 0.15 * std::sin(kTwoPi * t / 9.0 + phase_[3]));
+      return look_at(eye, aim);
     }
     case Kind::Rpy: {
       Eigen::Isometry3d T = look_at(Eigen::Vector3d::Zero(), SceneLayout::desk_centre());

@@ -17,6 +17,25 @@ double smooth(double s) {
   return s * s * (3 - 2 * s);
 }
 
+// A slow shift away from the stop point and back (PersonTrack::dawdle): a
+// random direction, 0.15-0.3 m, shortened until the whole shift stays on free
+// floor and clear of the camera path at both stop points (one per leg).
+Eigen::Vector2d dawdle_offset(const WalkingPathPlanner& planner, const WalkingPath& path, double stop_at,
+                              PanelPainter& rng) {
+  const Eigen::Vector2d stops[] = {path.a + stop_at * (path.b - path.a), path.b + stop_at * (path.a - path.b)};
+  const double angle = rng.uniform(0, kTwoPi);
+  Eigen::Vector2d offset = rng.uniform(0.15, 0.3) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  for (; offset.norm() > 0.02; offset *= 0.5) {
+    bool ok = true;
+    for (const Eigen::Vector2d& stop : stops) {
+      ok = ok && planner.camera_distance(stop, stop + offset) >= 0.6;
+      for (double s = 0; ok && s <= 1.0; s += 0.25) ok = planner.free(stop + s * offset);
+    }
+    if (ok) return offset;
+  }
+  return Eigen::Vector2d::Zero();
+}
+
 }  // namespace
 
 DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
@@ -47,11 +66,11 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen
   const WalkingPathPlanner planner(std::move(samples), path_options);
   for (int i = 0; i < options.walking && n_cut > 0; ++i) {
     PersonTrack p = make(i);
-    // Alternate: close (covers up to half the image), then farther away. Each
+    // Alternate: close (1-1.4 m: covers up to about half the image), then farther away. Each
     // person crosses the line of sight the camera has at its own anchor time,
     // spread over the sequence.
     const bool near = i % 2 == 0;
-    const double preferred = near ? rng.uniform(0.8, 1.3) : rng.uniform(1.6, 2.6);
+    const double preferred = near ? rng.uniform(1.0, 1.4) : rng.uniform(1.6, 2.6);
     const double slot = options.duration / options.walking;
     const double anchor = slot * (i + 0.5) + rng.uniform(-0.15, 0.15) * slot;
     std::optional<WalkingPath> path = planner.plan_near(anchor, preferred);
@@ -68,11 +87,12 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen
     }
     p.a = path->a;
     p.b = path->b;
-    p.speed = rng.uniform(0.8, 1.3);
+    p.speed = rng.uniform(0.6, 1.3);
     p.pause = rng.uniform(0.5, 3.0);
     // Every other person stops in view for a while (talking, looking around).
     p.stop_at = std::clamp(path->crossing + rng.uniform(-0.1, 0.1), 0.1, 0.9);
-    p.stop_time = i % 2 == 1 || i >= 2 ? rng.uniform(1.5, 4.0) : 0.0;
+    p.stop_time = i % 2 == 1 || i >= 2 ? rng.uniform(3.0, 6.0) : 0.0;
+    if (p.stop_time > 0) p.dawdle = dawdle_offset(planner, *path, p.stop_at, rng);
     // Phase the back-and-forth so the person passes the crossing at the anchor time.
     const double len = (p.b - p.a).norm();
     const double period = 2 * (len / p.speed + p.stop_time + p.pause);
@@ -107,21 +127,25 @@ V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
   const double len = (p.b - p.a).norm();
   // One leg: walk to the stop point, stand there, walk on.
   const double walk = len / p.speed + p.stop_time;
+  const double t_stop = p.stop_at * len / p.speed;
   auto along = [&](double tau) {  // fraction of the path done after tau seconds of a leg
-    const double t_stop = p.stop_at * len / p.speed;
     if (tau < t_stop) return tau * p.speed / len;
     if (tau < t_stop + p.stop_time) return p.stop_at;
     return std::min(1.0, (tau - p.stop_time) * p.speed / len);
+  };
+  auto shift = [&](double tau) -> Eigen::Vector2d {  // the dawdle while stopped
+    if (tau < t_stop || tau >= t_stop + p.stop_time) return Eigen::Vector2d::Zero();
+    return p.dawdle * std::sin(M_PI * (tau - t_stop) / p.stop_time);
   };
   const double period = 2 * (walk + p.pause);
   const double tau = std::fmod(t + p.offset, period);
   Eigen::Vector2d xy;
   if (tau < walk) {
-    xy = p.a + (p.b - p.a) * along(tau);
+    xy = p.a + (p.b - p.a) * along(tau) + shift(tau);
   } else if (tau < walk + p.pause) {
     xy = p.b;
   } else if (tau < 2 * walk + p.pause) {
-    xy = p.b + (p.a - p.b) * along(tau - walk - p.pause);
+    xy = p.b + (p.a - p.b) * along(tau - walk - p.pause) + shift(tau - walk - p.pause);
   } else {
     xy = p.a;
   }

@@ -29,6 +29,10 @@ struct PersonTrack {
   double pause = 2.0;            // seconds out of view at each end
   double stop_at = 0.5;          // fraction of the path where the person stands a while
   double stop_time = 0.0;        // seconds standing there (0 = walks straight through)
+  // While "standing" the person shifts slowly out to this floor offset and back
+  // (half a sine over stop_time, 0.1-0.3 m/s): people who talk or look around
+  // are never still, and slow motion is what a geometric outlier test misses.
+  Eigen::Vector2d dawdle = Eigen::Vector2d::Zero();
   double offset = 0.0;           // seconds into the back-and-forth cycle at t = 0
   bool still = false;            // stands at `a`, only sways
   std::uint16_t id = 1;
