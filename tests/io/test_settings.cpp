@@ -275,6 +275,7 @@ TEST(Settings, SegmentationKeys) {
                              "Segmentation.classes: \"person, chair,dog\"\nSegmentation.scoreThreshold: 0.4\n"
                              "Segmentation.nmsIouThreshold: 0.5\nSegmentation.maskThreshold: 0.6\n"
                              "Segmentation.maskDilation: 7\nSegmentation.threads: 2\n"
+                             "Segmentation.holdFrames: 4\n"
                              "Segmentation.masksForClassesOnly: 1\nSegmentation.agnosticNms: 1\n"));
     EXPECT_FALSE(s.segmentation.enabled);
     EXPECT_EQ(std::filesystem::path(s.segmentation.model_path),
@@ -284,6 +285,7 @@ TEST(Settings, SegmentationKeys) {
     EXPECT_FLOAT_EQ(s.segmentation.nms_iou_threshold, 0.5f);
     EXPECT_FLOAT_EQ(s.segmentation.mask_threshold, 0.6f);
     EXPECT_EQ(s.segmentation.mask_dilation, 7);
+    EXPECT_EQ(s.segmentation.hold_frames, 4);
     EXPECT_EQ(s.segmentation.threads, 2);
     EXPECT_TRUE(s.segmentation.masks_for_classes_only);
     EXPECT_TRUE(s.segmentation.agnostic_nms);

@@ -14,12 +14,14 @@ namespace stillslam {
 namespace {
 
 // Reports one "person" whose box encodes the frame's first pixel value, so the
-// order of results can be checked; throws on a pixel value of 255.
+// order of results can be checked; throws on a pixel value of 255 and finds
+// nobody on 100.
 class FakeSegmenter final : public Segmenter {
  public:
   std::vector<Detection> segment(const cv::Mat& bgr) override {
     const int v = bgr.at<cv::Vec3b>(0, 0)[0];
     if (v == 255) throw Error("fake failure");
+    if (v == 100) return {};
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
     Detection d;
     d.class_id = 0;
@@ -43,6 +45,26 @@ TEST(SegmentationWorker, ResultsInSubmissionOrderWithMasks) {
     EXPECT_EQ(cv::countNonZero(r.dynamic_mask), i == 0 ? 8 : 10);
     EXPECT_DOUBLE_EQ(r.coverage, cv::countNonZero(r.dynamic_mask) / 600.0);
     EXPECT_GT(r.time_ms, 0.0);
+  }
+}
+
+TEST(SegmentationWorker, HoldsAPersonTheSegmenterLost) {
+  for (const int hold_frames : {0, 2}) {
+    SegmentationWorker worker(std::make_unique<FakeSegmenter>(), {0}, 0, MaskHoldOptions{.frames = hold_frames});
+    std::vector<std::future<SegmentationResult>> futures;
+    for (const int v : {5, 100, 100, 100}) futures.push_back(worker.submit(frame(v)));
+    std::vector<SegmentationResult> r;
+    for (auto& f : futures) r.push_back(f.get());
+    EXPECT_EQ(cv::countNonZero(r[0].dynamic_mask), 4);
+    EXPECT_EQ(r[0].held_coverage, 0.0);
+    for (int k = 1; k <= 3; ++k) {
+      EXPECT_TRUE(r[static_cast<std::size_t>(k)].detections.empty());
+      const bool held = k <= hold_frames;
+      EXPECT_EQ(r[static_cast<std::size_t>(k)].dynamic_mask(0, 5) != 0, held) << "frame " << k;
+      EXPECT_EQ(r[static_cast<std::size_t>(k)].held_coverage > 0, held) << "frame " << k;
+      EXPECT_DOUBLE_EQ(r[static_cast<std::size_t>(k)].coverage,
+                       cv::countNonZero(r[static_cast<std::size_t>(k)].dynamic_mask) / 600.0);
+    }
   }
 }
 

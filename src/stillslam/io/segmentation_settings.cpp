@@ -7,9 +7,9 @@
 namespace stillslam {
 namespace {
 
-constexpr std::array<const char*, 10> kKnownKeys = {
+constexpr std::array<const char*, 11> kKnownKeys = {
     "enabled",      "model",   "classes",             "scoreThreshold", "nmsIouThreshold",
-    "maskThreshold", "maskDilation", "threads", "masksForClassesOnly", "agnosticNms"};
+    "maskThreshold", "maskDilation", "holdFrames", "threads", "masksForClassesOnly", "agnosticNms"};
 constexpr const char* kPrefix = "Segmentation.";
 
 std::string known_keys_list() {
@@ -142,6 +142,7 @@ void read_segmentation_section(const YamlReader& yaml, SegmentationOptions& opti
   options.nms_iou_threshold = unit_interval(keys, "nmsIouThreshold", options.nms_iou_threshold);
   options.mask_threshold = unit_interval(keys, "maskThreshold", options.mask_threshold);
   options.mask_dilation = integer(keys, "maskDilation", options.mask_dilation, 0);
+  options.hold_frames = integer(keys, "holdFrames", options.hold_frames, 0);
   options.threads = integer(keys, "threads", options.threads, 1);
   options.masks_for_classes_only = flag(keys, "masksForClassesOnly", options.masks_for_classes_only);
   options.agnostic_nms = flag(keys, "agnosticNms", options.agnostic_nms);

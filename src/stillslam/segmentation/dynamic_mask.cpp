@@ -9,9 +9,9 @@
 
 namespace stillslam {
 
-cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vector<int>& dynamic_class_ids,
-                       cv::Size size, int dilation_px) {
-  cv::Mat1b mask(size, uchar{0});
+std::vector<cv::Mat1b> dynamic_instances(const std::vector<Detection>& detections,
+                                         const std::vector<int>& dynamic_class_ids, cv::Size size) {
+  std::vector<cv::Mat1b> out;
   const cv::Rect frame(0, 0, size.width, size.height);
   for (const auto& d : detections) {
     if (std::find(dynamic_class_ids.begin(), dynamic_class_ids.end(), d.class_id) == dynamic_class_ids.end())
@@ -21,14 +21,22 @@ cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vect
         throw Error("dynamic_mask: detection mask is " + std::to_string(d.mask.cols) + "x" +
                     std::to_string(d.mask.rows) + " but the frame is " + std::to_string(size.width) + "x" +
                     std::to_string(size.height));
-      cv::bitwise_or(mask, d.mask, mask);
+      out.push_back(d.mask);
     } else {
       const cv::Rect box = cv::Rect(cv::Point(cvFloor(d.box.x), cvFloor(d.box.y)),
                                     cv::Point(cvCeil(d.box.x + d.box.width), cvCeil(d.box.y + d.box.height))) &
                            frame;
-      mask(box).setTo(255);
+      cv::Mat1b m(size, uchar{0});
+      m(box).setTo(255);
+      out.push_back(m);
     }
   }
+  return out;
+}
+
+cv::Mat1b dynamic_mask(const std::vector<cv::Mat1b>& instances, cv::Size size, int dilation_px) {
+  cv::Mat1b mask(size, uchar{0});
+  for (const cv::Mat1b& m : instances) cv::bitwise_or(mask, m, mask);
   if (dilation_px > 0) {
     // A true disc (OpenCV's MORPH_ELLIPSE is not one): every pixel within dilation_px of the mask.
     const int r = dilation_px;
@@ -39,6 +47,11 @@ cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vect
     cv::dilate(mask, mask, disc);
   }
   return mask;
+}
+
+cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vector<int>& dynamic_class_ids,
+                       cv::Size size, int dilation_px) {
+  return dynamic_mask(dynamic_instances(detections, dynamic_class_ids, size), size, dilation_px);
 }
 
 std::vector<std::size_t> keypoints_outside_mask(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat1b& mask) {

@@ -16,6 +16,12 @@ namespace stillslam {
 cv::Mat1b dynamic_mask(const std::vector<Detection>& detections, const std::vector<int>& dynamic_class_ids,
                        cv::Size size, int dilation_px);
 
+// The same in two steps: the frame-size mask of each detection of a dynamic
+// class (its box when it has no mask), then their dilated union.
+std::vector<cv::Mat1b> dynamic_instances(const std::vector<Detection>& detections,
+                                         const std::vector<int>& dynamic_class_ids, cv::Size size);
+cv::Mat1b dynamic_mask(const std::vector<cv::Mat1b>& instances, cv::Size size, int dilation_px);
+
 // The keypoint filter used by the frame builder: indices (ascending) of the
 // keypoints whose rounded pixel is outside the mask (mask == 0). Keypoints outside
 // the image count as outside the mask. An empty mask keeps every keypoint.

@@ -13,6 +13,9 @@ struct SegmentationOptions {
   float nms_iou_threshold = 0.45f;            // Segmentation.nmsIouThreshold
   float mask_threshold = 0.5f;                // Segmentation.maskThreshold
   int mask_dilation = 0;                      // Segmentation.maskDilation, pixels
+  // Segmentation.holdFrames: a dynamic instance the segmenter loses stays masked
+  // this many frames (detections flicker; see mask_hold.h). 0: off.
+  int hold_frames = 10;
   // Segmentation.threads: OpenCV worker threads. OpenCV's thread count is process-wide, so
   // YoloSegmenter applies it once at construction (cv::setNumThreads). 1 (default) runs the
   // network serially on the calling thread, which on a 2-core machine leaves the other core

@@ -7,10 +7,11 @@
 namespace stillslam {
 
 SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter, std::vector<int> dynamic_class_ids,
-                                       int dilation_px)
+                                       int dilation_px, MaskHoldOptions hold)
     : segmenter_(std::move(segmenter)),
       dynamic_class_ids_(std::move(dynamic_class_ids)),
       dilation_px_(dilation_px),
+      hold_(hold),
       thread_([this] { run(); }) {
   if (!segmenter_) {
     stop();
@@ -71,7 +72,13 @@ SegmentationResult SegmentationWorker::process(const cv::Mat& image) {
   Stopwatch watch;
   SegmentationResult r;
   r.detections = segmenter_->segment(image);
-  r.dynamic_mask = dynamic_mask(r.detections, dynamic_class_ids_, image.size(), dilation_px_);
+  const std::vector<cv::Mat1b> instances = dynamic_instances(r.detections, dynamic_class_ids_, image.size());
+  r.dynamic_mask = dynamic_mask(instances, image.size(), dilation_px_);
+  const cv::Mat1b held = hold_.update(instances, image.size());
+  if (!held.empty()) {
+    r.held_coverage = mask_coverage(held);
+    cv::bitwise_or(r.dynamic_mask, held, r.dynamic_mask);
+  }
   r.coverage = mask_coverage(r.dynamic_mask);
   r.time_ms = watch.elapsed_ms();
   return r;

@@ -70,6 +70,7 @@ nlohmann::json to_json(const FrameStats& f) {
           {"inliers", f.inliers},
           {"detections", f.build.detections},
           {"mask_coverage", f.build.mask_coverage},
+          {"held_mask_coverage", f.build.held_coverage},
           {"times_ms",
            {{"extraction", f.build.extraction_ms},
             {"segmentation", f.build.segmentation_ms},

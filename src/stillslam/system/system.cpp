@@ -78,7 +78,8 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
     auto segmenter = std::make_unique<YoloSegmenter>(settings.segmentation);
     segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
                                                          resolve_class_ids(settings.segmentation.classes),
-                                                         settings.segmentation.mask_dilation);
+                                                         settings.segmentation.mask_dilation,
+                                                         MaskHoldOptions{.frames = settings.segmentation.hold_frames});
   }
   builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get());
   atlas_ = std::make_unique<Atlas>();

@@ -76,6 +76,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     st.segmentation_ms = seg.time_ms;
     st.detections = static_cast<int>(seg.detections.size());
     st.mask_coverage = seg.coverage;
+    st.held_coverage = seg.held_coverage;
     if (!seg.dynamic_mask.empty()) left = select(left, keypoints_outside_mask(left.keypoints, seg.dynamic_mask));
   }
   st.keypoints_after = static_cast<int>(left.size());

@@ -22,6 +22,7 @@ struct FrameBuildStats {
   int keypoints_with_depth = 0;
   int detections = 0;        // all detections of the segmenter
   double mask_coverage = 0;  // fraction of the image in the dynamic mask
+  double held_coverage = 0;  // of which held over from instances the segmenter lost (MaskHold)
   double extraction_ms = 0;  // ORB (left and right in parallel)
   double extraction_cpu_ms = 0;  // CPU time of this thread in the left-image extraction
   double segmentation_ms = 0;       // segmenter time on its own thread
