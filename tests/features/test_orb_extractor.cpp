@@ -150,6 +150,30 @@ TEST(OrbExtractor, SameOutputWithOneOrTwoThreads) {
   EXPECT_EQ(cv::norm(serial.descriptors, parallel.descriptors, cv::NORM_HAMMING), 0.0);
 }
 
+TEST(OrbExtractor, ExclusionMaskMovesTheWholeBudgetOutsideIt) {
+  // A person covering the left 60% of the view: none of the features land on
+  // it, and the budget is spent on the rest instead of being lost.
+  const cv::Mat image = test::textured_image();
+  const OrbExtractor extractor{OrbOptions{}};
+  cv::Mat1b person(image.size(), uchar{0});
+  person(cv::Rect(0, 0, image.cols * 6 / 10, image.rows)).setTo(255);
+  const OrbFeatures all = extractor.extract(image);
+  const OrbFeatures outside = extractor.extract(image, person, nullptr);
+  std::size_t all_outside = 0;
+  for (const cv::KeyPoint& kp : all.keypoints) all_outside += kp.pt.x >= image.cols * 0.6f;
+  for (const cv::KeyPoint& kp : outside.keypoints) EXPECT_GE(kp.pt.x, image.cols * 0.6f - 1.0f);
+  std::cout << "[ measure ] features outside the mask: filtered after extraction " << all_outside
+            << ", extracted outside it " << outside.size() << "\n";
+  EXPECT_LT(all_outside, 0.5 * all.size());
+  EXPECT_GE(static_cast<double>(outside.size()), 0.8 * all.size());
+  EXPECT_EQ(outside.descriptors.rows, static_cast<int>(outside.size()));
+  // An empty or all-zero mask changes nothing.
+  const OrbFeatures none = extractor.extract(image, cv::Mat1b(image.size(), uchar{0}), nullptr);
+  ASSERT_EQ(none.size(), all.size());
+  EXPECT_EQ(cv::norm(none.descriptors, all.descriptors, cv::NORM_HAMMING), 0.0);
+  EXPECT_THROW(extractor.extract(image, cv::Mat1b(10, 10, uchar{0}), nullptr), Error);
+}
+
 TEST(OrbExtractor, BadInputsGiveClearErrors) {
   const OrbExtractor extractor{OrbOptions{}};
   EXPECT_THROW(extractor.extract(cv::Mat()), Error);

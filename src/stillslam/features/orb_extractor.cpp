@@ -1,5 +1,6 @@
 #include "stillslam/features/orb_extractor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
@@ -60,7 +61,8 @@ struct LevelResult {
   cv::Mat descriptors;
 };
 
-LevelResult extract_level(const cv::Mat& image, int target, const OrbOptions& options,
+// exclude: empty, or the level-size mask of pixels where no corner may be kept.
+LevelResult extract_level(const cv::Mat& image, const cv::Mat1b& exclude, int target, const OrbOptions& options,
                           const BriefPattern& pattern) {
   LevelResult out;
   if (target <= 0) return out;
@@ -69,7 +71,14 @@ LevelResult extract_level(const cv::Mat& image, int target, const OrbOptions& op
   fast.ini_threshold = options.ini_th_fast;
   fast.min_threshold = options.min_th_fast;
   fast.border = kBorder;
-  const std::vector<cv::KeyPoint> corners = detect_fast_in_cells(image, fast);
+  std::vector<cv::KeyPoint> corners = detect_fast_in_cells(image, fast);
+  if (!exclude.empty()) {
+    std::erase_if(corners, [&](const cv::KeyPoint& kp) {
+      const int x = std::clamp(static_cast<int>(kp.pt.x), 0, exclude.cols - 1);
+      const int y = std::clamp(static_cast<int>(kp.pt.y), 0, exclude.rows - 1);
+      return exclude(y, x) != 0;
+    });
+  }
   const cv::Rect2f region(static_cast<float>(kBorder), static_cast<float>(kBorder),
                           static_cast<float>(image.cols - 2 * kBorder),
                           static_cast<float>(image.rows - 2 * kBorder));
@@ -112,12 +121,32 @@ OrbExtractor::OrbExtractor(const OrbOptions& options)
 OrbFeatures OrbExtractor::extract(const cv::Mat& gray) const { return extract(gray, nullptr); }
 
 OrbFeatures OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::Mat>* pyramid_out) const {
+  return extract(gray, cv::Mat1b(), pyramid_out);
+}
+
+OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
+                                  std::vector<cv::Mat>* pyramid_out) const {
   if (gray.empty() || gray.type() != CV_8UC1) {
     throw Error("ORB extraction needs a non-empty 8-bit single-channel image (got type " +
                 std::to_string(gray.type()) + ", " + std::to_string(gray.cols) + "x" +
                 std::to_string(gray.rows) + "); convert colour images with cv::cvtColor first");
   }
+  if (!exclude.empty() && exclude.size() != gray.size()) {
+    throw Error("ORB extraction: the exclusion mask is " + std::to_string(exclude.cols) + "x" +
+                std::to_string(exclude.rows) + " but the image is " + std::to_string(gray.cols) + "x" +
+                std::to_string(gray.rows));
+  }
   std::vector<cv::Mat> levels = build_image_pyramid(gray, pyramid_);
+  // The mask at each level's size: a corner is dropped when its level pixel
+  // shows any excluded full-resolution pixel (INTER_AREA averages, > 0 keeps them).
+  std::vector<cv::Mat1b> excluded(levels.size());
+  if (!exclude.empty() && cv::countNonZero(exclude) > 0) {
+    excluded[0] = exclude;
+    for (std::size_t l = 1; l < levels.size(); ++l) {
+      if (levels[l].empty()) continue;
+      cv::resize(exclude, excluded[l], levels[l].size(), 0, 0, cv::INTER_AREA);
+    }
+  }
 
   std::vector<LevelResult> results(static_cast<std::size_t>(pyramid_.n_levels));
   // Levels are independent and each writes only its own slot, so the result
@@ -125,8 +154,8 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::Mat>* pyr
   cv::parallel_for_(cv::Range(0, pyramid_.n_levels), [&](const cv::Range& range) {
     for (int l = range.start; l < range.end; ++l) {
       results[static_cast<std::size_t>(l)] =
-          extract_level(levels[static_cast<std::size_t>(l)], features_per_level_[static_cast<std::size_t>(l)],
-                        options_, pattern_);
+          extract_level(levels[static_cast<std::size_t>(l)], excluded[static_cast<std::size_t>(l)],
+                        features_per_level_[static_cast<std::size_t>(l)], options_, pattern_);
     }
   });
 

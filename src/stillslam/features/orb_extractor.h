@@ -28,6 +28,10 @@ class OrbExtractor {
   // Also returns the pyramid (level l has size round(cols/scale[l]) x
   // round(rows/scale[l]), unblurred), e.g. for stereo patch refinement.
   OrbFeatures extract(const cv::Mat& gray, std::vector<cv::Mat>* pyramid_out) const;
+  // Keeps no corner on a non-zero pixel of `exclude` (CV_8UC1, the image's
+  // size, or empty): the whole feature budget goes to the rest of the image
+  // (dynamic objects masked before extraction, as DynaSLAM does).
+  OrbFeatures extract(const cv::Mat& gray, const cv::Mat1b& exclude, std::vector<cv::Mat>* pyramid_out) const;
 
   const ScalePyramid& pyramid() const { return pyramid_; }
   const OrbOptions& options() const { return options_; }

@@ -30,7 +30,7 @@ void common_tail(std::ofstream& out, const std::filesystem::path& model, int fea
       << "Segmentation.model: \"" << model.string() << "\"\n"
       << "Segmentation.classes: \"person\"\n"
       << "Segmentation.scoreThreshold: 0.25\nSegmentation.nmsIouThreshold: 0.45\n"
-      << "Segmentation.maskThreshold: 0.5\nSegmentation.maskDilation: 5\nSegmentation.holdFrames: 10\nSegmentation.threads: 1\n";
+      << "Segmentation.maskThreshold: 0.5\nSegmentation.maskDilation: 10\nSegmentation.holdFrames: 10\nSegmentation.threads: 1\n";
 }
 
 }  // namespace

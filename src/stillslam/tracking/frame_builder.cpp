@@ -53,22 +53,15 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     mask_future = segmentation_->submit(color);
   }
 
-  // 2. ORB on left (this thread) and right (second core) in parallel.
-  Stopwatch extraction;
-  ThreadCpuStopwatch extraction_cpu;
+  // 2. ORB on the right image (second core) starts at once. The left image
+  // waits for the dynamic mask and is extracted outside it, so its whole
+  // feature budget goes to the static part of the view.
   std::vector<cv::Mat> left_pyramid, right_pyramid;
   std::future<OrbFeatures> right_future;
   if (stereo) {
     right_future = std::async(std::launch::async, [&] { return extractor_.extract(input.right, &right_pyramid); });
   }
-  OrbFeatures left = extractor_.extract(input.gray, stereo ? &left_pyramid : nullptr);
-  st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
-  OrbFeatures right;
-  if (stereo) right = right_future.get();
-  st.extraction_ms = extraction.elapsed_ms();
-  st.keypoints_before = static_cast<int>(left.size());
-
-  // 3. Dynamic filter before anything else looks at the keypoints.
+  cv::Mat1b exclude;
   if (segmentation_ != nullptr) {
     Stopwatch wait;
     SegmentationResult seg = mask_future.get();
@@ -77,8 +70,20 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     st.detections = static_cast<int>(seg.detections.size());
     st.mask_coverage = seg.coverage;
     st.held_coverage = seg.held_coverage;
-    if (!seg.dynamic_mask.empty()) left = select(left, keypoints_outside_mask(left.keypoints, seg.dynamic_mask));
+    exclude = std::move(seg.dynamic_mask);
   }
+  Stopwatch extraction;
+  ThreadCpuStopwatch extraction_cpu;
+  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr);
+  st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
+  OrbFeatures right;
+  if (stereo) right = right_future.get();
+  st.extraction_ms = extraction.elapsed_ms();
+  st.keypoints_before = static_cast<int>(left.size());
+
+  // 3. Dynamic filter before anything else looks at the keypoints (a guard:
+  // the extractor already kept none in the mask).
+  if (!exclude.empty()) left = select(left, keypoints_outside_mask(left.keypoints, exclude));
   st.keypoints_after = static_cast<int>(left.size());
 
   // 4. Undistortion and depth association.

@@ -17,13 +17,13 @@
 namespace stillslam {
 
 struct FrameBuildStats {
-  int keypoints_before = 0;  // extracted on the left/colour image
+  int keypoints_before = 0;  // extracted on the left/colour image (outside the dynamic mask)
   int keypoints_after = 0;   // after the dynamic filter
   int keypoints_with_depth = 0;
   int detections = 0;        // all detections of the segmenter
   double mask_coverage = 0;  // fraction of the image in the dynamic mask
   double held_coverage = 0;  // of which held over from instances the segmenter lost (MaskHold)
-  double extraction_ms = 0;  // ORB (left and right in parallel)
+  double extraction_ms = 0;  // ORB on the left image (the right one ran meanwhile)
   double extraction_cpu_ms = 0;  // CPU time of this thread in the left-image extraction
   double segmentation_ms = 0;       // segmenter time on its own thread
   double segmentation_wait_ms = 0;  // time this thread waited for the mask
