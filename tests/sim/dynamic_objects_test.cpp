@@ -23,15 +23,22 @@ PeopleTextures people_textures() {
   return p;
 }
 
-TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
+const Eigen::Vector3d kCamera(0.1, -0.2, 0.05);
+
+// `walking` + `still` people in front of a camera standing at kCamera for `seconds`.
+DynamicObjects people_in_front(int walking, int still, double seconds, std::uint64_t seed) {
   DynamicObjectsOptions o;
-  o.walking = 3;
-  o.still = 1;
-  o.duration = 20;
+  o.walking = walking;
+  o.still = still;
+  o.duration = seconds;
   const std::vector<cv::Size> textures(4, cv::Size(640, 480));
-  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
-  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(camera, 20), people_textures(),
-                           textures, 9);
+  return DynamicObjects(o, Eigen::Isometry3d::Identity(), still_camera(kCamera, seconds), people_textures(),
+                        textures, seed);
+}
+
+TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
+  const Eigen::Vector3d& camera = kCamera;
+  const DynamicObjects dyn = people_in_front(3, 1, 20, 9);
   ASSERT_EQ(dyn.people().size(), 4u);
   std::vector<Eigen::Vector3d> last(4);
   int standing_frames = 0;
@@ -65,13 +72,7 @@ TEST(DynamicObjects, PeopleWalkOnTheFloorAtHumanHeightFacingTheCamera) {
 TEST(DynamicObjects, PeopleWhoStopInViewShiftSlowly) {
   // Standing people drift slowly (0.05-0.4 m/s) rather than freeze: the motion
   // a geometric outlier test cannot tell from noise.
-  DynamicObjectsOptions o;
-  o.walking = 3;
-  o.duration = 30;
-  const std::vector<cv::Size> textures(4, cv::Size(640, 480));
-  const Eigen::Vector3d camera(0.1, -0.2, 0.05);
-  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(camera, 30), people_textures(),
-                           textures, 5);
+  const DynamicObjects dyn = people_in_front(3, 0, 30, 5);
   int stopping = 0, slow_frames = 0;
   for (const PersonTrack& p : dyn.people()) {
     if (p.stop_time == 0) continue;
