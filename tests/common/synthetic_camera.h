@@ -17,13 +17,7 @@ namespace stillslam::test {
 // 640x480 pinhole, f = 500 px, bf = 40 (an 8 cm baseline), close depth 40
 // baselines, the default ORB pyramid.
 inline std::shared_ptr<CameraSetup> synthetic_camera_setup() {
-  CameraCalibration calib;
-  calib.fx = 500;
-  calib.fy = 500;
-  calib.cx = 320;
-  calib.cy = 240;
-  calib.width = 640;
-  calib.height = 480;
+  const CameraCalibration calib = pinhole_calibration(500, 500, 320, 240, 640, 480);
   return std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 40.0 / 500 * 40);
 }
 

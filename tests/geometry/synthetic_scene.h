@@ -10,14 +10,7 @@
 namespace stillslam::testing {
 
 inline CameraCalibration tum_like_calibration() {
-  CameraCalibration c;
-  c.fx = 517.3;
-  c.fy = 516.5;
-  c.cx = 318.6;
-  c.cy = 255.3;
-  c.width = 640;
-  c.height = 480;
-  return c;
+  return pinhole_calibration(517.3, 516.5, 318.6, 255.3, 640, 480);
 }
 
 // Camera looking down +z of the world from `center`, rotated by small angles.

@@ -25,13 +25,7 @@ inline std::filesystem::path euroc_micro_mav0(const std::filesystem::path& share
 class OrbKeyframeFactory {
  public:
   explicit OrbKeyframeFactory(double fx, double cx, double cy, int width, int height) : extractor_(OrbOptions{}) {
-    CameraCalibration calib;
-    calib.fx = fx;
-    calib.fy = fx;
-    calib.cx = cx;
-    calib.cy = cy;
-    calib.width = width;
-    calib.height = height;
+    const CameraCalibration calib = pinhole_calibration(fx, fx, cx, cy, width, height);
     setup_ = std::make_shared<CameraSetup>(PinholeCamera(calib, 0.0), ScalePyramid(OrbOptions{}), 0.0);
   }
 

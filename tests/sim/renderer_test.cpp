@@ -11,14 +11,7 @@ namespace stillslam::sim {
 namespace {
 
 CameraCalibration test_camera() {
-  CameraCalibration c;
-  c.fx = 200;
-  c.fy = 210;
-  c.cx = 79.5;
-  c.cy = 61.0;
-  c.width = 160;
-  c.height = 120;
-  return c;
+  return pinhole_calibration(200, 210, 79.5, 61.0, 160, 120);
 }
 
 // Texture whose colour encodes its own coordinates: B = 255 x, G = 255 y.

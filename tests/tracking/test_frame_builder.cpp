@@ -35,12 +35,7 @@ cv::Mat textured_image(int seed) {
 }
 
 std::shared_ptr<CameraSetup> make_setup(double bf) {
-  CameraCalibration calib;
-  calib.fx = calib.fy = 500;
-  calib.cx = 320;
-  calib.cy = 240;
-  calib.width = 640;
-  calib.height = 480;
+  const CameraCalibration calib = pinhole_calibration(500, 500, 320, 240, 640, 480);
   return std::make_shared<CameraSetup>(PinholeCamera(calib, bf), ScalePyramid(OrbOptions{}), 3.0);
 }
 

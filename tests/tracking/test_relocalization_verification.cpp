@@ -26,12 +26,7 @@ using Descriptor = std::array<std::uint8_t, 32>;
 class RepeatedPosterScene {
  public:
   RepeatedPosterScene() {
-    CameraCalibration calib;
-    calib.fx = calib.fy = 500;
-    calib.cx = 320;
-    calib.cy = 240;
-    calib.width = 640;
-    calib.height = 480;
+    const CameraCalibration calib = pinhole_calibration(500, 500, 320, 240, 640, 480);
     setup_ = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 40.0 / 500 * 40);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> poster_x(-0.6, 0.6), poster_y(-0.45, 0.45);

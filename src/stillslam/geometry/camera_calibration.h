@@ -17,6 +17,18 @@ struct CameraCalibration {
   int width = 0, height = 0;
 };
 
+// A pinhole camera without distortion (synthetic scenes, tests).
+inline CameraCalibration pinhole_calibration(double fx, double fy, double cx, double cy, int width, int height) {
+  CameraCalibration c;
+  c.fx = fx;
+  c.fy = fy;
+  c.cx = cx;
+  c.cy = cy;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
 // A stereo pair. When `rectified` is true both images are already rectified
 // (left calibration holds the rectified intrinsics, no distortion) and only
 // the baseline matters; otherwise T_c1_c2 and the right calibration are used
