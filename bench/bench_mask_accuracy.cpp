@@ -5,16 +5,20 @@
 //   precision = |predicted ∩ true| / |predicted| (predicted pixels truly dynamic)
 // pooled over all pixels of the sampled frames, plus CPU time per frame.
 //
-//   build/bench/bench_mask_accuracy --sequence DIR [--step 10] [--model FILE ...]
+//   build/bench/bench_mask_accuracy --sequence DIR [--step 10] [--model FILE ...] [--gray]
 //
+// --gray segments what a monochrome camera (EuRoC, most stereo rigs) would
+// give: the same frames turned to gray and back to three equal channels.
 // Without --model: models/*.onnx and ../shared/models/yolo-seg/yolo11n-seg_*.onnx.
 #include <time.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,15 +62,16 @@ int main(int argc, char** argv) {
   fs::path seq;
   int step = 10;
   std::vector<std::string> models;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--sequence") seq = argv[i + 1];
-    else if (a == "--step") step = std::max(1, std::stoi(argv[i + 1]));
-    else if (a == "--model") models.push_back(argv[i + 1]);
-  }
-  if (seq.empty()) {
-    std::fprintf(stderr, "usage: bench_mask_accuracy --sequence DIR [--step 10] [--model FILE ...]\n");
-    return 1;
+  bool gray = false;
+  CLI::App app("Dynamic-mask accuracy against a generated sequence's masks/", "bench_mask_accuracy");
+  app.add_option("--sequence", seq, "`stillslam simulate` folder")->required();
+  app.add_option("--step", step, "every k-th frame")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--model", models, "ONNX model(s) (default: models/ and ../shared/models/yolo-seg/yolo11n-seg_*)");
+  app.add_flag("--gray", gray, "segment the frames as a monochrome camera gives them");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
   }
   if (models.empty()) {
     const fs::path repo = fs::path(STILLSLAM_SOURCE_DIR);
@@ -85,7 +90,8 @@ int main(int argc, char** argv) {
   }
   try {
     const std::vector<std::string> frames = sampled_frames(seq, step);
-    std::printf("%zu frames of %s (every %d-th)\n", frames.size(), seq.string().c_str(), step);
+    std::printf("%zu frames of %s (every %d-th)%s\n", frames.size(), seq.string().c_str(), step,
+                gray ? ", segmented in gray" : "");
     std::printf("%-40s %8s %9s %8s %12s\n", "model", "recall", "precision", "IoU", "cpu ms/frame");
     for (const std::string& model : models) {
       SegmentationOptions o;
@@ -95,9 +101,13 @@ int main(int argc, char** argv) {
       const std::vector<int> person = resolve_class_ids({"person"});
       double inter = 0, truth = 0, predicted = 0, cpu = 0;
       for (const std::string& name : frames) {
-        const cv::Mat bgr = cv::imread((seq / "rgb" / name).string(), cv::IMREAD_COLOR);
+        cv::Mat bgr = cv::imread((seq / "rgb" / name).string(), cv::IMREAD_COLOR);
         const cv::Mat gt = cv::imread((seq / "masks" / name).string(), cv::IMREAD_GRAYSCALE);
         if (bgr.empty() || gt.empty()) throw Error("cannot read rgb/ or masks/ " + name + " in " + seq.string());
+        if (gray) {
+          cv::cvtColor(bgr, bgr, cv::COLOR_BGR2GRAY);
+          cv::cvtColor(bgr, bgr, cv::COLOR_GRAY2BGR);
+        }
         const double t0 = process_cpu_ms();
         const cv::Mat1b pred = dynamic_mask(segmenter.segment(bgr), person, bgr.size(), 0);
         cpu += process_cpu_ms() - t0;
