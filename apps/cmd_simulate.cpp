@@ -60,6 +60,7 @@ void run_simulate(const SimulateArgs& args) {
   if (args.out.empty()) throw Error("simulate: --out DIR is required");
   sim::SimulationOptions options = args.options;
   parse_occlude(args.occlude, options);
+  if (options.stereo_gray) options.stereo = true;
   const auto s = sim::write_sequence(args.out, options, [](int done, int total) {
     if (done % 100 == 0 || done == total) spdlog::info("rendered {}/{} frames", done, total);
   });
@@ -93,7 +94,8 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("--no-people", o.no_people, "No moving things: static reference of the same sequence");
   cmd->add_option("--seed", o.seed, "Random seed (scene, people, noise)")->capture_default_str();
   cmd->add_flag("--overwrite", o.overwrite, "Replace a sequence already in --out");
-  cmd->add_flag("--stereo", o.stereo, "Also write a rectified stereo pair (EuRoC layout)");
+  cmd->add_flag("--stereo", o.stereo, "Also write a rectified stereo pair (EuRoC layout, colour PNGs)");
+  cmd->add_flag("--gray-stereo", o.stereo_gray, "Stereo pair in gray, like EuRoC's cameras (implies --stereo)");
   cmd->add_option("--baseline", o.baseline, "Stereo baseline in metres")->capture_default_str();
   cmd->add_option("--noise", o.noise, "0 none, 1 realistic, 2 heavy")->capture_default_str()->check(
       CLI::Range(0, 2));

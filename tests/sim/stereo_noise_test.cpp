@@ -77,9 +77,29 @@ TEST(Stereo, EurocLayoutLoadsWithItsSettings) {
   const SensorFrame f = dataset->load(1);
   EXPECT_EQ(f.gray.size(), cv::Size(320, 240));
   EXPECT_EQ(f.right.size(), cv::Size(320, 240));
-  // The RGB-D layout in the same folder still opens as TUM with the RGB-D settings.
-  EXPECT_EQ(open_dataset(dir, load_settings(s.settings))->kind(), "tum");
+  EXPECT_EQ(f.right.type(), CV_8UC1);
+  // The left image comes in colour (for the segmenter): the rgb/ image itself.
+  const auto tum = open_dataset(dir, load_settings(s.settings));
+  EXPECT_EQ(tum->kind(), "tum");  // the RGB-D layout in the same folder still opens as TUM
+  const SensorFrame rgbd = tum->load(1);
+  ASSERT_EQ(f.color.type(), CV_8UC3);
+  EXPECT_EQ(cv::norm(f.color, rgbd.color, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(f.gray, rgbd.gray, cv::NORM_INF), 0.0);
+
+  // --gray-stereo: EuRoC-like monochrome files, the same gray images, no colour.
+  const fs::path gray_dir = dir.string() + "_gray";
+  o.stereo_gray = true;
+  write_sequence(gray_dir, o);
+  const SensorFrame g = open_dataset(gray_dir, settings)->load(1);
+  EXPECT_EQ(cv::norm(g.gray, f.gray, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(g.right, f.right, cv::NORM_INF), 0.0);
+  std::vector<cv::Mat> channels;
+  cv::split(g.color, channels);
+  ASSERT_EQ(channels.size(), 3u);
+  EXPECT_EQ(cv::norm(channels[0], channels[2], cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(f.color, g.color, cv::NORM_L1) / f.color.total(), 5.0);  // colour really was dropped
   fs::remove_all(dir);
+  fs::remove_all(gray_dir);
 }
 
 TEST(Noise, DepthNoiseGrowsWithTheSquareOfDepth) {

@@ -123,14 +123,29 @@ EurocDataset::EurocDataset(const std::filesystem::path& mav0, const Settings& se
   rectifier_ = std::make_unique<StereoRectifier>(raw_, size);
 }
 
+namespace {
+
+cv::Mat to_gray(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+}  // namespace
+
 SensorFrame EurocDataset::read_frame(std::size_t i) const {
   const StereoFrame& f = frames_[i];
   SensorFrame frame;
   frame.name = f.left;
   const auto left_file = mav0_ / "cam0" / "data" / f.left;
   const auto right_file = mav0_ / "cam1" / "data" / f.right;
-  const cv::Mat left = read_gray_image(left_file);
-  const cv::Mat right = read_gray_image(right_file);
+  // Colour left images (a colour stereo rig in EuRoC layout) are kept for the
+  // segmenter, which misses far more people in gray; ORB runs on gray.
+  // Both sides turn to gray the same way (libpng's own gray conversion differs).
+  const cv::Mat left_as_stored = read_gray_or_color_image(left_file);
+  const cv::Mat left = to_gray(left_as_stored);
+  const cv::Mat right = to_gray(read_gray_or_color_image(right_file));
   for (const auto& [image, file] : {std::pair{&left, &left_file}, std::pair{&right, &right_file}}) {
     if (image->size() != rectifier_->size()) {
       throw Error(file->string() + ": image is " + std::to_string(image->cols) + "x" +
@@ -140,7 +155,11 @@ SensorFrame EurocDataset::read_frame(std::size_t i) const {
   }
   frame.gray = rectifier_->rectify_left(left);
   frame.right = rectifier_->rectify_right(right);
-  cv::cvtColor(frame.gray, frame.color, cv::COLOR_GRAY2BGR);
+  if (left_as_stored.channels() == 3) {
+    frame.color = rectifier_->rectify_left(left_as_stored);
+  } else {
+    cv::cvtColor(frame.gray, frame.color, cv::COLOR_GRAY2BGR);
+  }
   return frame;
 }
 

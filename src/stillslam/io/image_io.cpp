@@ -40,6 +40,13 @@ cv::Mat read_gray_image(const std::filesystem::path& file) {
   return image;
 }
 
+cv::Mat read_gray_or_color_image(const std::filesystem::path& file) {
+  cv::Mat image = read(file, cv::IMREAD_ANYCOLOR);
+  if (image.depth() != CV_8U) image.convertTo(image, CV_8U);
+  if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
+  return image;
+}
+
 cv::Mat read_depth_image(const std::filesystem::path& file, double depth_map_factor) {
   const cv::Mat raw = read(file, cv::IMREAD_UNCHANGED);
   if (raw.type() != CV_16UC1) {

@@ -10,6 +10,9 @@ namespace stillslam {
 cv::Mat read_color_image(const std::filesystem::path& file);
 // 8-bit single-channel image.
 cv::Mat read_gray_image(const std::filesystem::path& file);
+// 8-bit image as stored: single-channel for a gray file, BGR for a colour one
+// (alpha dropped), so colour reaches the segmenter when a camera has it.
+cv::Mat read_gray_or_color_image(const std::filesystem::path& file);
 // A 16-bit depth PNG converted to CV_32F metres (raw / depth_map_factor;
 // 0 stays 0 = invalid). An 8-bit or colour file is an error.
 cv::Mat read_depth_image(const std::filesystem::path& file, double depth_map_factor);

@@ -113,15 +113,16 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
       cam1_csv << ns << "," << ns << ".png\n";
     }
     groundtruth.push_back({std::stod(t), f.T_world_cam});
-    pending = std::async(std::launch::async, [&dir, &mav, t, ns, stereo = o.stereo, f = std::move(f)] {
+    pending = std::async(std::launch::async, [&dir, &mav, t, ns, stereo = o.stereo, gray = o.stereo_gray,
+                                              f = std::move(f)] {
       write_png(dir / "rgb" / (t + ".png"), f.bgr);
       write_png(dir / "depth" / (t + ".png"), depth_png(f.depth));
       write_png(dir / "masks" / (t + ".png"), f.mask);
       if (stereo) {
-        cv::Mat left;
-        cv::cvtColor(f.bgr, left, cv::COLOR_BGR2GRAY);
+        cv::Mat left = f.bgr;
+        if (gray) cv::cvtColor(f.bgr, left, cv::COLOR_BGR2GRAY);
         write_png(mav / "cam0" / "data" / (ns + ".png"), left);
-        write_png(mav / "cam1" / "data" / (ns + ".png"), f.right_gray);
+        write_png(mav / "cam1" / "data" / (ns + ".png"), gray ? f.right_gray : f.right_bgr);
       }
     });
     if (progress) progress(i + 1, n);

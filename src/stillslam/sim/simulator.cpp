@@ -194,8 +194,8 @@ SimFrame Simulator::render_frame(int index) const {
     const Eigen::Isometry3d T_right = f.T_world_cam * T_left_right();
     const RenderedView right = renderer_->render_blurred(quads, T_right, exposure(T_left_right()),
                                                          options_.supersampling);
-    cv::Mat bgr8 = apply_image_noise(right.bgr, noise_, rng);
-    cv::cvtColor(bgr8, f.right_gray, cv::COLOR_BGR2GRAY);
+    f.right_bgr = apply_image_noise(right.bgr, noise_, rng);
+    cv::cvtColor(f.right_bgr, f.right_gray, cv::COLOR_BGR2GRAY);
   }
   return f;
 }

@@ -33,7 +33,8 @@ struct SimFrame {
   cv::Mat depth;       // CV_32FC1 metres, 0 = no data (noisy when options.noise > 0)
   cv::Mat mask;        // CV_8UC1: 255 on moving people/objects (ground truth), else 0
   cv::Mat dynamic_ids; // CV_16UC1: which moving thing (0 = static)
-  cv::Mat right_gray;  // CV_8UC1, stereo only: right camera of the rectified pair
+  cv::Mat right_bgr;   // CV_8UC3, stereo only: right camera of the rectified pair
+  cv::Mat right_gray;  // CV_8UC1, the same in gray
 };
 
 class Simulator {
