@@ -80,5 +80,46 @@ TEST(SystemEndToEnd, StereoSyntheticSequenceIsTrackedAccurately) {
   EXPECT_LT(ev.ape_stats.rmse, 0.015);
 }
 
+// A segmenter that always finds one person on the left half of the frame.
+class LeftHalfPerson : public Segmenter {
+ public:
+  explicit LeftHalfPerson(int* calls) : calls_(calls) {}
+  std::vector<Detection> segment(const cv::Mat& bgr) override {
+    ++*calls_;
+    Detection d;
+    d.class_id = 0;
+    d.class_name = "person";
+    d.score = 0.9f;
+    d.box = cv::Rect2f(0, 0, bgr.cols / 2.f, static_cast<float>(bgr.rows));
+    d.mask = cv::Mat1b::zeros(bgr.size());
+    d.mask(cv::Rect(0, 0, bgr.cols / 2, bgr.rows)).setTo(255);
+    return {d};
+  }
+
+ private:
+  int* calls_;
+};
+
+TEST(SystemEndToEnd, SegmenterFactoryReplacesTheModel) {
+  test::SimSequence seq = rgbd_sequence();
+  seq.settings.segmentation.enabled = true;
+  seq.settings.segmentation.mask_dilation = 0;
+  seq.settings.segmentation.model_path = "/nonexistent/model.onnx";  // never opened
+  int calls = 0;
+  SystemOptions options;
+  options.deterministic = true;
+  options.tracker.init_min_keypoints = 300;
+  options.segmenter_factory = [&calls] { return std::make_unique<LeftHalfPerson>(&calls); };
+  System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
+  for (int i = 0; i < 5; ++i) {
+    const FrameStats stats = system.process(seq.frames[i]);
+    EXPECT_EQ(stats.build.detections, 1);
+    EXPECT_NEAR(stats.build.mask_coverage, 0.5, 1e-9);
+    EXPECT_GT(stats.build.keypoints_after, 500);  // the whole budget on the right half
+  }
+  system.shutdown();
+  EXPECT_EQ(calls, 5);
+}
+
 }  // namespace
 }  // namespace stillslam

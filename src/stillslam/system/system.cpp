@@ -75,7 +75,9 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
                 "`stillslam run --save-map FILE`)");
   }
   if (options_.use_segmentation && settings.segmentation.enabled) {
-    auto segmenter = std::make_unique<YoloSegmenter>(settings.segmentation);
+    std::unique_ptr<Segmenter> segmenter = options_.segmenter_factory
+                                               ? options_.segmenter_factory()
+                                               : std::make_unique<YoloSegmenter>(settings.segmentation);
     segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
                                                          resolve_class_ids(settings.segmentation.classes),
                                                          settings.segmentation.mask_dilation,

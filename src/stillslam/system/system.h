@@ -19,6 +19,7 @@
 // keyframe: until a merge their poses are in their own map's frame.
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -45,6 +46,9 @@ namespace stillslam {
 
 struct SystemOptions {
   bool use_segmentation = true;  // also needs Segmentation.enabled in the settings
+  // Replaces the settings' YOLO model (bench_slam --oracle-masks runs on
+  // ground-truth masks); the classes, dilation and hold settings still apply.
+  std::function<std::unique_ptr<Segmenter>()> segmenter_factory;
   // Synchronous local mapping (each keyframe processed inline, single-threaded
   // BA, no aborts): same input gives the same trajectory bit for bit.
   bool deterministic = false;
