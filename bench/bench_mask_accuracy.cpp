@@ -16,14 +16,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
@@ -39,19 +38,12 @@ double process_cpu_ms() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-// rgb/<name>.png of associations.txt, every `step`-th line.
+// rgb/<name>.png of associations.txt, every `step`-th frame.
 std::vector<std::string> sampled_frames(const fs::path& seq, int step) {
-  std::ifstream in(seq / "associations.txt");
-  if (!in) throw Error("no associations.txt in " + seq.string() + " (expects a `stillslam simulate` folder)");
+  const std::vector<TumPair> pairs = read_tum_associations(seq / "associations.txt");
   std::vector<std::string> names;
-  std::string line;
-  for (int i = 0; std::getline(in, line); ++i) {
-    if (line.empty() || line[0] == '#' || i % step != 0) continue;
-    std::istringstream ss(line);
-    double t;
-    std::string rgb;
-    ss >> t >> rgb;
-    names.push_back(fs::path(rgb).filename().string());
+  for (std::size_t i = 0; i < pairs.size(); i += static_cast<std::size_t>(step)) {
+    names.push_back(fs::path(pairs[i].rgb_file).filename().string());
   }
   return names;
 }

@@ -23,11 +23,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include "stillslam/core/error.h"
 #include "stillslam/eval/evaluate.h"
+#include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/segmenter.h"
 #include "stillslam/system/dataset_runner.h"
 #include "stillslam/system/run_summary.h"
@@ -76,14 +76,8 @@ void print_timing(const char* name, const TimingSummary& t) {
 class OracleSegmenter : public Segmenter {
  public:
   explicit OracleSegmenter(const fs::path& sequence) {
-    std::ifstream in(sequence / "associations.txt");
-    if (!in) throw Error((sequence / "associations.txt").string() + ": missing (--oracle-masks wants a simulate folder)");
-    std::string line;
-    while (std::getline(in, line)) {
-      std::istringstream ss(line);
-      std::string stamp, rgb;
-      if (line.empty() || line[0] == '#' || !(ss >> stamp >> rgb)) continue;
-      files_.push_back(sequence / "masks" / fs::path(rgb).filename());
+    for (const TumPair& p : read_tum_associations(sequence / "associations.txt")) {
+      files_.push_back(sequence / "masks" / fs::path(p.rgb_file).filename());
     }
   }
   std::vector<Detection> segment(const cv::Mat& bgr) override {

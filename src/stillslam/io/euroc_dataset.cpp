@@ -11,6 +11,13 @@
 namespace stillslam {
 namespace {
 
+cv::Mat to_gray(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
 struct TimedImage {
   double timestamp;
   std::string file;
@@ -122,17 +129,6 @@ EurocDataset::EurocDataset(const std::filesystem::path& mav0, const Settings& se
   if (size.width <= 0 || size.height <= 0) size = read_gray_image(mav0 / "cam0" / "data" / frames_[0].left).size();
   rectifier_ = std::make_unique<StereoRectifier>(raw_, size);
 }
-
-namespace {
-
-cv::Mat to_gray(const cv::Mat& image) {
-  if (image.channels() == 1) return image;
-  cv::Mat gray;
-  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-  return gray;
-}
-
-}  // namespace
 
 SensorFrame EurocDataset::read_frame(std::size_t i) const {
   const StereoFrame& f = frames_[i];

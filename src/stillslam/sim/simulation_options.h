@@ -34,8 +34,9 @@ struct SimulationOptions {
 
   bool stereo = false;         // also write a rectified EuRoC-layout stereo pair
   double baseline = 0.1;       // metres, stereo only
-  // Stereo images in gray like EuRoC's cameras; else in colour like a ZED-type
-  // rig (the segmenter finds people far more reliably in colour).
+  // With stereo: the pair in gray like EuRoC's cameras; else in colour like a
+  // ZED-type rig (the segmenter finds people far more reliably in colour).
+  // `simulate --gray-stereo` sets both.
   bool stereo_gray = false;
   int noise = 0;               // 0 none, 1 realistic, 2 heavy
   int supersampling = 2;       // rays per pixel per axis for colour
