@@ -101,17 +101,19 @@ void compare(const char* name, const std::vector<cv::Mat>& images, int n_feature
               cv_mt.median_ms, threads, cv_1.median_ms, cv_1.median_cpu_ms, cv_mt.mean_features);
 }
 
-void bench_stereo(const test::EurocStereo& data) {
+void bench_stereo(const test::EurocStereo& data, bool flow) {
   OrbOptions options;
   options.n_features = 1200;  // EuRoC.yaml
   const OrbExtractor extractor(options);
+  StereoMatchOptions matching;
+  matching.flow_for_unmatched = flow;
   std::vector<double> ms, matches, depths;
   for (std::size_t i = 0; i < data.left.size(); ++i) {
     std::vector<cv::Mat> pl, pr;
     const OrbFeatures fl = extractor.extract(data.left[i], &pl);
     const OrbFeatures fr = extractor.extract(data.right[i], &pr);
     const double cpu0 = thread_cpu_ms();
-    const StereoMatches m = match_stereo(fl, pl, fr, pr, extractor.pyramid(), data.fx, data.bf);
+    const StereoMatches m = match_stereo(fl, pl, fr, pr, extractor.pyramid(), data.fx, data.bf, matching);
     ms.push_back(thread_cpu_ms() - cpu0);
     matches.push_back(m.num_matches);
     for (float d : m.depth) {
@@ -123,9 +125,10 @@ void bench_stereo(const test::EurocStereo& data) {
   mean_matches /= static_cast<double>(std::max<std::size_t>(1, matches.size()));
   std::sort(depths.begin(), depths.end());
   auto pct = [&](double p) { return depths.empty() ? 0.0 : depths[static_cast<std::size_t>(p * (depths.size() - 1))]; };
-  std::printf("stereo matching EuRoC V1_01 micro (%zu rectified pairs, fx %.1f, bf %.2f): median %.2f ms cpu, "
+  std::printf("stereo matching EuRoC V1_01 micro, %s (%zu rectified pairs, fx %.1f, bf %.2f): median %.2f ms cpu, "
               "%.0f matches of 1200 per pair, depth p10/p50/p90 %.2f/%.2f/%.2f m\n",
-              data.left.size(), data.fx, data.bf, median(ms), mean_matches, pct(0.1), pct(0.5), pct(0.9));
+              flow ? "descriptors + optical flow" : "descriptors only", data.left.size(), data.fx, data.bf,
+              median(ms), mean_matches, pct(0.1), pct(0.5), pct(0.9));
 }
 
 void bench_descriptor_distance() {
@@ -177,7 +180,8 @@ int main(int argc, char** argv) {
   if (fs::exists(mav0 / "cam1" / "sensor.yaml")) {
     const test::EurocStereo euroc = test::load_euroc_stereo(mav0);
     compare("EuRoC V1_01 micro cam0 (rectified)", euroc.left, 1200, std::max(1, repeats / 10));
-    bench_stereo(euroc);
+    bench_stereo(euroc, false);
+    bench_stereo(euroc, true);
   } else {
     std::printf("(skipped EuRoC: %s not found)\n", mav0.c_str());
   }

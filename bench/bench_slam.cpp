@@ -7,7 +7,7 @@
 //   build/bench/bench_slam --config S.yaml --input DIR [--groundtruth GT]
 //       [--no-segmentation] [--deterministic] [--check-determinism]
 //       [--max-frames N] [--opencv-threads N] [--json OUT] [--vocabulary FILE]
-//       [--oracle-masks DIR]
+//       [--oracle-masks DIR] [--trajectory OUT]
 //
 // --oracle-masks: a `stillslam simulate` folder; its ground-truth masks/ (in
 // associations.txt order) replace YOLO, with the settings' dilation and hold.
@@ -27,6 +27,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/eval/evaluate.h"
+#include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/segmenter.h"
 #include "stillslam/system/dataset_runner.h"
@@ -38,7 +39,7 @@ using namespace stillslam;
 namespace {
 
 struct Args {
-  std::string config, input, groundtruth, json, oracle_masks, vocabulary;
+  std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory;
   bool no_segmentation = false, deterministic = false, check_determinism = false;
   std::size_t max_frames = 0;
   int opencv_threads = -1;
@@ -52,6 +53,7 @@ Args parse(int argc, char** argv) {
   app.add_option("--groundtruth", a.groundtruth, "ground-truth trajectory (TUM) for ATE");
   app.add_option("--json", a.json, "write the results as JSON here");
   app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary (relocalization, loop closing; default: none)");
+  app.add_option("--trajectory", a.trajectory, "write the estimated trajectory here (TUM format)");
   app.add_option("--oracle-masks", a.oracle_masks, "simulate folder whose ground-truth masks/ replace YOLO");
   app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
   app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
@@ -170,6 +172,7 @@ int bench(const Args& a) {
                 same ? "bit-for-bit identical" : "DIFFERENT");
     out["deterministic_identical"] = same;
   }
+  if (!a.trajectory.empty()) write_trajectory(a.trajectory, r.trajectory, TrajectoryFormat::Tum);
   if (!a.json.empty()) std::ofstream(a.json) << out.dump(1) << "\n";
   return 0;
 }

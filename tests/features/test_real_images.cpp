@@ -69,10 +69,55 @@ TEST(RealImages, EurocStereoPairs) {
     std::cout << "[ measure ] EuRoC pair " << i << ": " << l.size() << " keypoints, " << m.num_matches
               << " stereo matches, median depth " << median << " m\n";
     // The Vicon room seen from V1_01's start: walls and floor 1-4 m away.
-    EXPECT_GE(m.num_matches, 580);  // measured 638-665
+    EXPECT_GE(m.num_matches, 850);  // measured 916-936 (638-665 without optical flow)
     EXPECT_GT(median, 1.5f);
     EXPECT_LT(median, 3.0f);
   }
+}
+
+// Optical flow checked against the descriptor path on real images: every
+// other descriptor match is withheld, flow proposes a right column for it, and
+// the proposal must land near the descriptor match (the patch refinement then
+// searches +-5 level pixels around it).
+TEST(RealImages, EurocFlowProposalsAgreeWithDescriptorMatches) {
+  const auto mav0 = kShared / "data/euroc_V1_01_micro/mav0";
+  if (!std::filesystem::exists(mav0 / "cam1/sensor.yaml")) {
+    GTEST_SKIP() << "needs " << mav0 << " (the shared data folder next to the repository)";
+  }
+  const test::EurocStereo data = test::load_euroc_stereo(mav0, 5);
+  OrbOptions options;
+  options.n_features = 1200;
+  const OrbExtractor extractor(options);
+  StereoMatchOptions descriptors_only;
+  descriptors_only.flow_for_unmatched = false;
+  int withheld = 0, proposed = 0, within_1px = 0;
+  for (std::size_t i = 0; i < data.left.size(); ++i) {
+    std::vector<cv::Mat> pl, pr;
+    const OrbFeatures l = extractor.extract(data.left[i], &pl);
+    const OrbFeatures r = extractor.extract(data.right[i], &pr);
+    const StereoMatches reference = match_stereo(l, pl, r, pr, extractor.pyramid(), data.fx, data.bf, descriptors_only);
+    std::vector<float> u_right = reference.u_right;
+    std::vector<std::size_t> held;
+    for (std::size_t k = 0, n = 0; k < l.size(); ++k) {
+      if (u_right[k] >= 0 && n++ % 2 == 0) {
+        u_right[k] = -1.f;
+        held.push_back(k);
+      }
+    }
+    const std::vector<float> proposals = flow_right_proposals(l, u_right, pl[0], pr[0], StereoFlowOptions{});
+    for (std::size_t k : held) {
+      ++withheld;
+      if (proposals[k] < 0) continue;
+      ++proposed;
+      within_1px += std::abs(proposals[k] - reference.u_right[k]) < 1.f;
+    }
+  }
+  const double proposed_share = static_cast<double>(proposed) / withheld;
+  const double agree_share = static_cast<double>(within_1px) / std::max(1, proposed);
+  std::cout << "[ measure ] EuRoC, " << withheld << " withheld descriptor matches: flow proposes " << proposed_share
+            << ", of which " << agree_share << " within 1 px of the descriptor match\n";
+  EXPECT_GT(proposed_share, 0.7);
+  EXPECT_GT(agree_share, 0.9);
 }
 
 }  // namespace stillslam

@@ -40,6 +40,21 @@ Pair make_pair(const DisparityField& disparity) {
   return p;
 }
 
+// The descriptor + patch path alone (the tests below measure the flow part).
+StereoMatchOptions descriptor_only() {
+  StereoMatchOptions o;
+  o.flow_for_unmatched = false;
+  return o;
+}
+
+// True disparity at left keypoint `p`: the field is indexed by the right
+// image's column, so solve D = f(u - D, v).
+double true_disparity(const DisparityField& disparity, const cv::Point2f& p) {
+  double d = disparity(p.x, p.y);
+  for (int it = 0; it < 30; ++it) d = disparity(p.x - d, p.y);
+  return d;
+}
+
 struct StereoScores {
   int matches = 0;
   double within_1pct = 0;      // fraction of matches with |depth error| < 1%
@@ -61,9 +76,7 @@ StereoScores run(const Pair& pair, const DisparityField& disparity, const Stereo
     }
     ++counted;
     const cv::Point2f p = left.keypoints[i].pt;
-    // The field is indexed by the right image's column: solve D = f(u - D, v).
-    double d_true = disparity(p.x, p.y);
-    for (int it = 0; it < 30; ++it) d_true = disparity(p.x - d_true, p.y);
+    const double d_true = true_disparity(disparity, p);
     const double depth_true = kBf / d_true;
     good += std::abs(m.depth[i] - depth_true) < 0.01 * depth_true;
     s.mean_abs_disp_err += std::abs((p.x - m.u_right[i]) - d_true);
@@ -76,6 +89,57 @@ StereoScores run(const Pair& pair, const DisparityField& disparity, const Stereo
   return s;
 }
 
+// Matches that optical flow added (none without it), with their errors.
+struct FlowScores {
+  int descriptor_matches = 0, flow_matches = 0, wrong = 0;  // wrong: |disparity error| > 1 px
+  int dropped = 0;                                          // descriptor matches lost to the outlier test
+  double mean_abs_disp_err = 0;                             // over the right ones
+};
+
+FlowScores run_flow(const Pair& pair, const DisparityField& disparity) {
+  const OrbExtractor extractor{OrbOptions{}};
+  std::vector<cv::Mat> pyr_l, pyr_r;
+  const OrbFeatures left = extractor.extract(pair.left, &pyr_l);
+  const OrbFeatures right = extractor.extract(pair.right, &pyr_r);
+  const StereoMatches without = match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, kBf, descriptor_only());
+  const StereoMatches with = match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, kBf);
+  FlowScores s;
+  s.descriptor_matches = without.num_matches;
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    if (without.depth[i] > 0) {
+      // Flow matches join the median-SAD outlier test, so a descriptor match
+      // may drop out, but none changes.
+      if (with.depth[i] > 0) {
+        EXPECT_EQ(with.u_right[i], without.u_right[i]) << "flow must not change descriptor matches";
+      } else {
+        ++s.dropped;
+      }
+      continue;
+    }
+    if (with.depth[i] < 0) continue;
+    ++s.flow_matches;
+    const cv::Point2f p = left.keypoints[i].pt;
+    EXPECT_NEAR(with.depth[i], kBf / (p.x - with.u_right[i]), 1e-3 * with.depth[i]);
+    const double error = std::abs((p.x - with.u_right[i]) - true_disparity(disparity, p));
+    if (error > 1.0) {
+      ++s.wrong;
+    } else {
+      s.mean_abs_disp_err += error;
+    }
+  }
+  EXPECT_EQ(with.num_matches, s.descriptor_matches - s.dropped + s.flow_matches);
+  const int right_ones = s.flow_matches - s.wrong;
+  s.mean_abs_disp_err = right_ones > 0 ? s.mean_abs_disp_err / right_ones : 0;
+  return s;
+}
+
+void print(const char* name, const FlowScores& s) {
+  std::cout << "[ measure ] " << name << ": descriptor matches " << s.descriptor_matches << ", flow adds "
+            << s.flow_matches << " (" << s.wrong << " off by > 1 px; " << s.dropped
+            << " descriptor matches dropped), mean |disparity error| "
+            << s.mean_abs_disp_err << " px\n";
+}
+
 void print(const char* name, const StereoScores& s) {
   std::cout << "[ measure ] " << name << ": matches " << s.matches << " within 1% depth " << s.within_1pct
             << " mean |disparity error| " << s.mean_abs_disp_err << " px\n";
@@ -86,8 +150,8 @@ void print(const char* name, const StereoScores& s) {
 TEST(StereoMatcher, ConstantSubpixelDisparity) {
   const DisparityField disparity = [](double, double) { return 23.37; };  // depth 2.156 m
   const Pair pair = make_pair(disparity);
-  const StereoScores sub = run(pair, disparity, {});
-  StereoMatchOptions integer_only;
+  const StereoScores sub = run(pair, disparity, descriptor_only());
+  StereoMatchOptions integer_only = descriptor_only();
   integer_only.subpixel = false;
   const StereoScores integer = run(pair, disparity, integer_only);
   print("constant 23.37 px, sub-pixel", sub);
@@ -103,8 +167,8 @@ TEST(StereoMatcher, SlantedPlane) {
   // Disparity from 12 to ~43 px across the image (depth 4.2 m to 1.2 m).
   const DisparityField disparity = [](double u, double v) { return 12.0 + 0.03 * u + 0.025 * v; };
   const Pair pair = make_pair(disparity);
-  const StereoScores sub = run(pair, disparity, {});
-  StereoMatchOptions integer_only;
+  const StereoScores sub = run(pair, disparity, descriptor_only());
+  StereoMatchOptions integer_only = descriptor_only();
   integer_only.subpixel = false;
   const StereoScores integer = run(pair, disparity, integer_only);
   print("slanted plane, sub-pixel", sub);
@@ -135,6 +199,28 @@ TEST(StereoMatcher, DisparityRangeIsRespected) {
   }
   EXPECT_THROW(match_stereo(left, pyr_l, right, {}, extractor.pyramid(), kFx, kBf), Error);
   EXPECT_THROW(match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, 0.0), Error);
+}
+
+TEST(StereoFlow, FillsUnmatchedKeypoints) {
+  const DisparityField disparity = [](double u, double v) { return 12.0 + 0.03 * u + 0.025 * v; };
+  const FlowScores s = run_flow(make_pair(disparity), disparity);
+  print("slanted plane, optical flow", s);
+  EXPECT_GE(s.flow_matches, 220);  // measured 274 on top of 639
+  EXPECT_LE(s.wrong, 2);
+  EXPECT_LT(s.mean_abs_disp_err, 0.12);  // measured 0.091 px (descriptor matches: 0.075)
+}
+
+TEST(StereoFlow, RejectsWhatTheRightCameraDoesNotSee) {
+  // The right half of the right image shows another texture: left keypoints
+  // whose match would land there have no true match.
+  const DisparityField disparity = [](double, double) { return 23.37; };
+  Pair pair = make_pair(disparity);
+  const cv::Mat other = test::textured_image(640, 480, 7, 1400, 50.0);
+  other(cv::Rect(320, 0, 320, 480)).copyTo(pair.right(cv::Rect(320, 0, 320, 480)));
+  const FlowScores s = run_flow(pair, disparity);
+  print("right half replaced, optical flow", s);
+  EXPECT_GE(s.flow_matches, 100);  // the left part still gets its matches
+  EXPECT_LE(s.wrong, s.flow_matches / 50);  // measured 1 of 182
 }
 
 TEST(StereoFromDepth, VirtualRightCoordinate) {

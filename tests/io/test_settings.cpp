@@ -250,6 +250,9 @@ TEST(Settings, NewStyleRectifiedStereo) {
   EXPECT_DOUBLE_EQ(s.th_depth, 35.0);
   EXPECT_DOUBLE_EQ(s.fps, 10.0);
   EXPECT_EQ(s.orb.n_features, 2000);
+  EXPECT_TRUE(s.stereo_flow_matching);
+  const Settings no_flow = load_settings(dir.write("KITTI_no_flow.yaml", std::string(kNewKitti) + "Stereo.flowMatching: 0\n"));
+  EXPECT_FALSE(no_flow.stereo_flow_matching);
 }
 
 TEST(Settings, NewStyleFisheyeStereo) {
@@ -330,6 +333,7 @@ TEST(Settings, ErrorsNameFileAndKey) {
       {tum + "Segmentation.classes: \"\"\n", "Segmentation.classes", "empty"},
       {tum + "Segmentation:\n  treads: 2\n", "Segmentation.treads", "known keys"},
       {replaced(kNewKitti, "Stereo.b: 0.53716\n", ""), "Stereo.b", "Rectified"},
+      {std::string(kNewKitti) + "Stereo.flowMatching: 2\n", "Stereo.flowMatching", "0 (descriptor matches only)"},
       {replaced(kNewKitti, "Stereo.b: 0.53716", "Stereo.b: 0"), "Stereo.b", "positive"},
       {replaced(kNewKitti, "File.version: \"1.0\"", "File.version: \"2.0\""), "File.version", "1.0"},
       {replaced(kNewFisheye, "Stereo.T_c1_c2", "Stereo.T_c2_c1"), "Stereo.T_c1_c2", "missing"},

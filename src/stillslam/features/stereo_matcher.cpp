@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
 #include "stillslam/core/error.h"
 #include "stillslam/features/descriptor.h"
@@ -51,6 +52,56 @@ struct Candidate {
   float sad;
 };
 
+struct Refined {
+  float u_right;  // level-0 pixels
+  float sad;
+};
+
+// Integer shift by zero-mean SAD within +-search_window level pixels of
+// `right_u` (level-0 pixels) on the left keypoint's level, sub-pixel by the
+// SSD parabola. None when the patch leaves the image or the minimum is on the
+// window's edge.
+std::optional<Refined> refine_on_level(const std::vector<cv::Mat>& left_pyramid,
+                                       const std::vector<cv::Mat>& right_pyramid, const cv::KeyPoint& kl,
+                                       float right_u, const StereoMatchOptions& options,
+                                       std::vector<PatchCost>& costs) {
+  const int w = options.patch_half_size, window = options.search_window;
+  const cv::Mat& img_l = left_pyramid[static_cast<std::size_t>(kl.octave)];
+  const cv::Mat& img_r = right_pyramid[static_cast<std::size_t>(kl.octave)];
+  const LevelMapping mapping(left_pyramid[0].size(), img_l.size());
+  const cv::Point2f level_l = mapping.to_level(kl.pt);
+  const int su_l = static_cast<int>(std::lround(level_l.x));
+  const int sv_l = static_cast<int>(std::lround(level_l.y));
+  const int su_r0 = static_cast<int>(std::lround(mapping.to_level({right_u, kl.pt.y}).x));
+  if (sv_l - w < 0 || sv_l + w >= img_l.rows || sv_l + w >= img_r.rows) return std::nullopt;
+  if (su_l - w < 0 || su_l + w >= img_l.cols) return std::nullopt;
+  if (su_r0 - window - w < 0 || su_r0 + window + w >= img_r.cols) return std::nullopt;
+
+  float best_sad = std::numeric_limits<float>::max();
+  int best_inc = 0;
+  for (int inc = -window; inc <= window; ++inc) {
+    const PatchCost cost = zero_mean_cost(img_l, su_l, sv_l, img_r, su_r0 + inc, sv_l, w);
+    costs[static_cast<std::size_t>(inc + window)] = cost;
+    if (cost.sad < best_sad) {
+      best_sad = cost.sad;
+      best_inc = inc;
+    }
+  }
+  // A minimum on the window edge cannot be refined: the true one may be outside.
+  if (best_inc == -window || best_inc == window) return std::nullopt;
+
+  float delta = 0.f;
+  if (options.subpixel) {
+    const float d1 = costs[static_cast<std::size_t>(best_inc + window - 1)].ssd;
+    const float d2 = costs[static_cast<std::size_t>(best_inc + window)].ssd;
+    const float d3 = costs[static_cast<std::size_t>(best_inc + window + 1)].ssd;
+    const float denominator = 2.f * (d1 + d3 - 2.f * d2);
+    if (denominator > 0.f) delta = (d1 - d3) / denominator;
+    if (delta < -1.f || delta > 1.f) return std::nullopt;
+  }
+  return Refined{mapping.to_full({static_cast<float>(su_r0 + best_inc) + delta, 0.f}).x, best_sad};
+}
+
 }  // namespace
 
 StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& left_pyramid,
@@ -87,8 +138,7 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
 
   const float min_d = options.min_disparity;
   const float max_d = options.max_disparity < 0 ? static_cast<float>(fx) : options.max_disparity;
-  const int w = options.patch_half_size, window = options.search_window;
-  std::vector<PatchCost> costs(static_cast<std::size_t>(2 * window + 1));
+  std::vector<PatchCost> costs(static_cast<std::size_t>(2 * options.search_window + 1));
   std::vector<Candidate> accepted;
   accepted.reserve(n);
 
@@ -118,42 +168,10 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
     }
     if (best_distance >= options.max_descriptor_distance) continue;
 
-    // SAD search along the row on the left keypoint's level.
-    const cv::Mat& img_l = left_pyramid[static_cast<std::size_t>(level)];
-    const cv::Mat& img_r = right_pyramid[static_cast<std::size_t>(level)];
-    const LevelMapping mapping(left_pyramid[0].size(), img_l.size());
-    const cv::Point2f level_l = mapping.to_level(kl.pt);
-    const int su_l = static_cast<int>(std::lround(level_l.x));
-    const int sv_l = static_cast<int>(std::lround(level_l.y));
-    const int su_r0 = static_cast<int>(std::lround(mapping.to_level(right.keypoints[best_right].pt).x));
-    if (sv_l - w < 0 || sv_l + w >= img_l.rows || sv_l + w >= img_r.rows) continue;
-    if (su_l - w < 0 || su_l + w >= img_l.cols) continue;
-    if (su_r0 - window - w < 0 || su_r0 + window + w >= img_r.cols) continue;
-
-    float best_sad = std::numeric_limits<float>::max();
-    int best_inc = 0;
-    for (int inc = -window; inc <= window; ++inc) {
-      const PatchCost cost = zero_mean_cost(img_l, su_l, sv_l, img_r, su_r0 + inc, sv_l, w);
-      costs[static_cast<std::size_t>(inc + window)] = cost;
-      if (cost.sad < best_sad) {
-        best_sad = cost.sad;
-        best_inc = inc;
-      }
-    }
-    // A minimum on the window edge cannot be refined: the true one may be outside.
-    if (best_inc == -window || best_inc == window) continue;
-
-    float delta = 0.f;
-    if (options.subpixel) {
-      const float d1 = costs[static_cast<std::size_t>(best_inc + window - 1)].ssd;
-      const float d2 = costs[static_cast<std::size_t>(best_inc + window)].ssd;
-      const float d3 = costs[static_cast<std::size_t>(best_inc + window + 1)].ssd;
-      const float denominator = 2.f * (d1 + d3 - 2.f * d2);
-      if (denominator > 0.f) delta = (d1 - d3) / denominator;
-      if (delta < -1.f || delta > 1.f) continue;
-    }
-
-    float u_r = mapping.to_full({static_cast<float>(su_r0 + best_inc) + delta, 0.f}).x;
+    // Patch refinement on the left keypoint's level, around the right keypoint.
+    const auto refined = refine_on_level(left_pyramid, right_pyramid, kl, right.keypoints[best_right].pt.x, options, costs);
+    if (!refined) continue;
+    float u_r = refined->u_right;
     float disparity = ul - u_r;
     if (disparity < min_d || disparity >= max_d) continue;
     if (disparity <= 0.f) {  // at infinity: keep a tiny positive disparity
@@ -162,7 +180,22 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
     }
     out.u_right[i] = u_r;
     out.depth[i] = static_cast<float>(bf / disparity);
-    accepted.push_back({i, best_sad});
+    accepted.push_back({i, refined->sad});
+  }
+
+  // Keypoints without a right keypoint: optical flow proposes where to refine.
+  if (options.flow_for_unmatched) {
+    const std::vector<float> proposals = flow_right_proposals(left, out.u_right, left_pyramid[0], right_pyramid[0], options.flow);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (proposals[i] < 0.f || !valid_level(left.keypoints[i].octave)) continue;
+      const auto refined = refine_on_level(left_pyramid, right_pyramid, left.keypoints[i], proposals[i], options, costs);
+      if (!refined) continue;
+      const float disparity = left.keypoints[i].pt.x - refined->u_right;
+      if (disparity <= 0.f || disparity < min_d || disparity >= max_d) continue;
+      out.u_right[i] = refined->u_right;
+      out.depth[i] = static_cast<float>(bf / disparity);
+      accepted.push_back({i, refined->sad});
+    }
   }
 
   // Outliers: SAD well above the median of all accepted matches.

@@ -6,12 +6,15 @@
 // sub-pixel by a parabola through zero-mean SSD, which unlike a parabola
 // through SAD is unbiased for locally linear images: 0.05 px vs 0.32 px mean
 // error on the synthetic test pair), then reject outliers whose SAD is far
-// above the median.
+// above the median. Left keypoints still without a match try optical flow
+// (stereo_flow.h).
 #include <opencv2/core.hpp>
 #include <vector>
 
 #include "stillslam/features/orb_features.h"
 #include "stillslam/features/scale_pyramid.h"
+#include "stillslam/features/stereo_flow.h"
+#include "stillslam/features/stereo_matches.h"
 
 namespace stillslam {
 
@@ -24,13 +27,10 @@ struct StereoMatchOptions {
   float max_disparity = -1.f;        // pixels; < 0 means fx (depth >= baseline)
   float sad_outlier_factor = 2.1f;   // reject SAD > factor * median SAD (1.5 * 1.4)
   bool subpixel = true;              // parabola fit (false: integer SAD minimum only)
-};
-
-// For each left keypoint: u_right (level-0 pixels, < 0 if none) and depth
-// (metres, < 0 if none).
-struct StereoMatches {
-  std::vector<float> u_right, depth;
-  int num_matches = 0;
+  // Left keypoints without a right keypoint get a match by optical flow
+  // (stereo_flow.h). Settings: Stereo.flowMatching.
+  bool flow_for_unmatched = true;
+  StereoFlowOptions flow;
 };
 
 // fx: rectified focal length (pixels); bf: baseline * fx (metres * pixels).

@@ -163,6 +163,12 @@ void read_camera_section(const YamlReader& yaml, Settings& s) {
   std::string th_key;
   s.th_depth = first_number(yaml, {"Stereo.ThDepth", "ThDepth"}, &th_key).value_or(s.th_depth);
   if (s.th_depth <= 0) yaml.fail(th_key, "must be positive (close/far threshold in baselines)");
+  if (const auto flow = yaml.optional_integer("Stereo.flowMatching")) {
+    if (*flow != 0 && *flow != 1) {
+      yaml.fail("Stereo.flowMatching", "must be 0 (descriptor matches only) or 1 (optical flow for the rest)");
+    }
+    s.stereo_flow_matching = *flow == 1;
+  }
   std::string depth_key;
   const auto depth_factor = first_number(yaml, {"RGBD.DepthMapFactor", "DepthMapFactor"}, &depth_key);
   if (depth_factor) {

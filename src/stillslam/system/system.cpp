@@ -83,7 +83,9 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
                                                          settings.segmentation.mask_dilation,
                                                          MaskHoldOptions{.frames = settings.segmentation.hold_frames});
   }
-  builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get());
+  StereoMatchOptions stereo_matching;
+  stereo_matching.flow_for_unmatched = settings.stereo_flow_matching;
+  builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get(), stereo_matching);
   atlas_ = std::make_unique<Atlas>();
   if (!options_.vocabulary_path.empty()) {
     if (!std::filesystem::is_regular_file(options_.vocabulary_path)) {
