@@ -40,10 +40,12 @@ Pair make_pair(const DisparityField& disparity) {
   return p;
 }
 
-// The descriptor + patch path alone (the tests below measure the flow part).
-StereoMatchOptions descriptor_only() {
+// The descriptor + patch path alone (the default; the flow tests turn flow on).
+StereoMatchOptions descriptor_only() { return StereoMatchOptions{}; }
+
+StereoMatchOptions with_flow() {
   StereoMatchOptions o;
-  o.flow_for_unmatched = false;
+  o.flow_for_unmatched = true;
   return o;
 }
 
@@ -102,7 +104,7 @@ FlowScores run_flow(const Pair& pair, const DisparityField& disparity) {
   const OrbFeatures left = extractor.extract(pair.left, &pyr_l);
   const OrbFeatures right = extractor.extract(pair.right, &pyr_r);
   const StereoMatches without = match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, kBf, descriptor_only());
-  const StereoMatches with = match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, kBf);
+  const StereoMatches with = match_stereo(left, pyr_l, right, pyr_r, extractor.pyramid(), kFx, kBf, with_flow());
   FlowScores s;
   s.descriptor_matches = without.num_matches;
   for (std::size_t i = 0; i < left.size(); ++i) {

@@ -250,9 +250,9 @@ TEST(Settings, NewStyleRectifiedStereo) {
   EXPECT_DOUBLE_EQ(s.th_depth, 35.0);
   EXPECT_DOUBLE_EQ(s.fps, 10.0);
   EXPECT_EQ(s.orb.n_features, 2000);
-  EXPECT_TRUE(s.stereo_flow_matching);
-  const Settings no_flow = load_settings(dir.write("KITTI_no_flow.yaml", std::string(kNewKitti) + "Stereo.flowMatching: 0\n"));
-  EXPECT_FALSE(no_flow.stereo_flow_matching);
+  EXPECT_FALSE(s.stereo_flow_matching);
+  const Settings flow = load_settings(dir.write("KITTI_flow.yaml", std::string(kNewKitti) + "Stereo.flowMatching: 1\n"));
+  EXPECT_TRUE(flow.stereo_flow_matching);
 }
 
 TEST(Settings, NewStyleFisheyeStereo) {

@@ -28,8 +28,9 @@ struct StereoMatchOptions {
   float sad_outlier_factor = 2.1f;   // reject SAD > factor * median SAD (1.5 * 1.4)
   bool subpixel = true;              // parabola fit (false: integer SAD minimum only)
   // Left keypoints without a right keypoint get a match by optical flow
-  // (stereo_flow.h). Settings: Stereo.flowMatching.
-  bool flow_for_unmatched = true;
+  // (stereo_flow.h). Settings: Stereo.flowMatching. Off by default: on the
+  // generated halfsphere sequences it gave no gain (bench/README.md).
+  bool flow_for_unmatched = false;
   StereoFlowOptions flow;
 };
 

@@ -26,7 +26,7 @@ struct Settings {
   std::optional<StereoCalibration> stereo;
   double bf = 0;                            // baseline * fx (Camera.bf, or Stereo.b * fx)
   double th_depth = 40;                     // ThDepth / Stereo.ThDepth, in baselines
-  bool stereo_flow_matching = true;         // Stereo.flowMatching: optical flow for unmatched left keypoints
+  bool stereo_flow_matching = false;        // Stereo.flowMatching: optical flow for unmatched left keypoints
   double depth_map_factor = 5000;           // DepthMapFactor / RGBD.DepthMapFactor
   double fps = 30;                          // Camera.fps
   // Camera.RGB: 1 = the dataset's images are RGB-ordered (TUM), 0 = BGR. The
