@@ -30,10 +30,7 @@ set(STILLSLAM_UNITY_BATCH 8 CACHE STRING "Source files per unity translation uni
 # Files compiled on their own because a file-local name clashes with another
 # file of the same module inside a unity TU. Renaming the clashing name (the
 # module owner's call) lets the file join its module's batches again.
-set(STILLSLAM_UNITY_EXCLUDE
-  src/stillslam/sim/dynamic_objects.cpp  # kTwoPi, also defined in camera_motion.cpp
-  src/stillslam/sim/settings_files.cpp   # open(path), also defined in sequence_writer.cpp
-)
+set(STILLSLAM_UNITY_EXCLUDE)
 
 if(CCACHE_PROGRAM AND STILLSLAM_PCH)
   # ccache can cache compilations that use a GCC precompiled header only with

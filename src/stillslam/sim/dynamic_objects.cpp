@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace stillslam::sim {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 using V = Eigen::Vector3d;
 
 // Smooth 0 -> 1 over [0, 1].
@@ -23,7 +23,7 @@ double smooth(double s) {
 Eigen::Vector2d dawdle_offset(const WalkingPathPlanner& planner, const WalkingPath& path, double stop_at,
                               PanelPainter& rng) {
   const Eigen::Vector2d stops[] = {path.a + stop_at * (path.b - path.a), path.b + stop_at * (path.a - path.b)};
-  const double angle = rng.uniform(0, kTwoPi);
+  const double angle = rng.uniform(0, 2 * std::numbers::pi);
   Eigen::Vector2d offset = rng.uniform(0.15, 0.3) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
   for (; offset.norm() > 0.02; offset *= 0.5) {
     bool ok = true;
@@ -135,7 +135,7 @@ V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
   };
   auto shift = [&](double tau) -> Eigen::Vector2d {  // the dawdle while stopped
     if (tau < t_stop || tau >= t_stop + p.stop_time) return Eigen::Vector2d::Zero();
-    return p.dawdle * std::sin(M_PI * (tau - t_stop) / p.stop_time);
+    return p.dawdle * std::sin(std::numbers::pi * (tau - t_stop) / p.stop_time);
   };
   const double period = 2 * (walk + p.pause);
   const double tau = std::fmod(t + p.offset, period);
@@ -159,13 +159,13 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
     V foot = person_foot(p, t);
     // Steps at ~1.8 Hz: the body rises twice per stride and sways sideways once.
     const double step = p.still ? 0.3 : 1.8;
-    const double bob = (p.still ? 0.005 : 0.025) * std::abs(std::sin(kTwoPi * step * 0.5 * t + p.offset));
+    const double bob = (p.still ? 0.005 : 0.025) * std::abs(std::sin(2 * std::numbers::pi * step * 0.5 * t + p.offset));
     V to_cam = cam - foot;
     to_cam.z() = 0;
     if (to_cam.norm() < 1e-6) to_cam = V(0, -1, 0);
     to_cam.normalize();
     const V right = V::UnitZ().cross(to_cam);  // image right as the camera sees the billboard
-    foot += right * ((p.still ? 0.01 : 0.02) * std::sin(kTwoPi * step * 0.25 * t + p.offset));
+    foot += right * ((p.still ? 0.01 : 0.02) * std::sin(2 * std::numbers::pi * step * 0.25 * t + p.offset));
     const double w = p.height * p.aspect;
     Quad q;
     q.origin = foot - right * (w / 2) + V(0, 0, p.height + bob);
@@ -181,7 +181,7 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
     const double t0 = 0.4 * options_.duration, dur = 2.5;
     const double s = smooth((t - t0) / dur);
     const bool moving = t > t0 && t < t0 + dur;
-    const V shift = V(-0.8 * s, 0.35 * s, 0.25 * std::sin(M_PI * s));
+    const V shift = V(-0.8 * s, 0.35 * s, 0.25 * std::sin(std::numbers::pi * s));
     for (Quad q : box_) {
       q.origin += shift;
       q.dynamic_id = moving ? box_id_ : 0;

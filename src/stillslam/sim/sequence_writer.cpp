@@ -8,6 +8,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/text_file.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/sim/settings_files.h"
 #include "stillslam/sim/simulator.h"
@@ -23,12 +24,6 @@ std::string tum_stamp(std::int64_t ns) {
   const std::int64_t us = ns / 1000;
   return cv::format("%lld.%06lld", static_cast<long long>(us / 1000000),
                     static_cast<long long>(us % 1000000));
-}
-
-std::ofstream open(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error("cannot write " + file.string() + "; check that the folder is writable");
-  return out;
 }
 
 void write_png(const fs::path& file, const cv::Mat& img) {
@@ -82,15 +77,15 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
     write_euroc_sensor_yaml(mav / "cam1" / "sensor.yaml", sim.camera(), o.baseline, o.fps, 1);
   }
 
-  auto rgb_txt = open(dir / "rgb.txt");
-  auto depth_txt = open(dir / "depth.txt");
-  auto assoc_txt = open(dir / "associations.txt");
+  auto rgb_txt = open_for_writing(dir / "rgb.txt");
+  auto depth_txt = open_for_writing(dir / "depth.txt");
+  auto assoc_txt = open_for_writing(dir / "associations.txt");
   rgb_txt << "# color images\n# file: 'stillslam simulate'\n# timestamp filename\n";
   depth_txt << "# depth maps\n# file: 'stillslam simulate'\n# timestamp filename\n";
   std::ofstream cam0_csv, cam1_csv;
   if (o.stereo) {
-    cam0_csv = open(mav / "cam0" / "data.csv");
-    cam1_csv = open(mav / "cam1" / "data.csv");
+    cam0_csv = open_for_writing(mav / "cam0" / "data.csv");
+    cam1_csv = open_for_writing(mav / "cam1" / "data.csv");
     cam0_csv << "#timestamp [ns],filename\n";
     cam1_csv << "#timestamp [ns],filename\n";
   }
@@ -131,7 +126,7 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
   write_trajectory(dir / "groundtruth.txt", groundtruth, TrajectoryFormat::Tum);
   if (o.stereo) {
     // Written here, not with io's writer: stamps must equal the image names to the nanosecond.
-    auto gt = open(mav / "state_groundtruth_estimate0" / "data.csv");
+    auto gt = open_for_writing(mav / "state_groundtruth_estimate0" / "data.csv");
     gt << "#timestamp [ns],p_x [m],p_y [m],p_z [m],q_w [],q_x [],q_y [],q_z []\n";
     for (int i = 0; i < n; ++i) {
       const Eigen::Isometry3d T = sim.pose(i);

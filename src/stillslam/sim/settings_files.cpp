@@ -4,15 +4,10 @@
 #include <opencv2/core.hpp>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text_file.h"
 
 namespace stillslam::sim {
 namespace {
-
-std::ofstream open(const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error("cannot write " + file.string());
-  return out;
-}
 
 void camera_block(std::ofstream& out, const CameraCalibration& c, int index) {
   out << cv::format("Camera%d.fx: %.6f\nCamera%d.fy: %.6f\nCamera%d.cx: %.6f\nCamera%d.cy: %.6f\n",
@@ -37,7 +32,7 @@ void common_tail(std::ofstream& out, const std::filesystem::path& model, int fea
 
 void write_rgbd_settings(const std::filesystem::path& file, const CameraCalibration& c,
                          const SimulationOptions& o, const std::filesystem::path& model) {
-  auto out = open(file);
+  auto out = open_for_writing(file);
   out << "%YAML:1.0\n# stillslam simulate: synthetic RGB-D sequence (pinhole like TUM fr3, no distortion).\n"
       << "File.version: \"1.0\"\nCamera.type: \"PinHole\"\n\n";
   camera_block(out, c, 1);
@@ -51,7 +46,7 @@ void write_rgbd_settings(const std::filesystem::path& file, const CameraCalibrat
 
 void write_stereo_settings(const std::filesystem::path& file, const CameraCalibration& c,
                            const SimulationOptions& o, const std::filesystem::path& model) {
-  auto out = open(file);
+  auto out = open_for_writing(file);
   out << "%YAML:1.0\n# stillslam simulate: synthetic rectified stereo pair (EuRoC layout in mav0/).\n"
       << "File.version: \"1.0\"\nCamera.type: \"PinHole\"\n\n";
   camera_block(out, c, 1);
@@ -68,7 +63,7 @@ void write_stereo_settings(const std::filesystem::path& file, const CameraCalibr
 
 void write_euroc_sensor_yaml(const std::filesystem::path& file, const CameraCalibration& c,
                              double x_offset, double fps, int index) {
-  auto out = open(file);
+  auto out = open_for_writing(file);
   out << "%YAML:1.0\n# General sensor definitions.\nsensor_type: camera\n"
       << "comment: stillslam simulate cam" << index << " (rectified pair, body frame = cam0)\n\n"
       << "# Sensor extrinsics wrt. the body-frame.\nT_BS:\n  cols: 4\n  rows: 4\n"
