@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "stillslam/core/error.h"
 #include "stillslam/io/trajectory.h"
@@ -43,7 +42,7 @@ CameraMotion CameraMotion::create(const std::string& name, const fs::path& data_
                                   std::uint64_t seed) {
   CameraMotion m;
   SplitMix rng(seed * 7919 + 17);
-  for (double& p : m.phase_) p = rng.uniform(0.0, 2 * std::numbers::pi);
+  for (double& p : m.phase_) p = rng.uniform(0.0, kTwoPi);
   m.start_ns_ = static_cast<std::int64_t>(kGeneratedStart) * 1000000000LL;
   m.duration_ = 1e9;
   if (name == "halfsphere") {
@@ -105,30 +104,30 @@ Eigen::Isometry3d CameraMotion::pose_at(double dt) const {
       // aim point wanders over the desk so the camera also yaws and pitches.
       // ~0.2 m/s and up to ~25 deg/s, close to the real sequence.
       constexpr double kRadius = 0.5;
-      const double az = 1.0 * std::sin(2 * std::numbers::pi * t / 16.0 + phase_[0]);
-      const double el = 0.5 * std::sin(2 * std::numbers::pi * t / 11.0 + phase_[1]);
+      const double az = 1.0 * std::sin(kTwoPi * t / 16.0 + phase_[0]);
+      const double el = 0.5 * std::sin(kTwoPi * t / 11.0 + phase_[1]);
       const Eigen::Vector3d eye = Eigen::Vector3d(0, 0.35, 0) +
           kRadius * Eigen::Vector3d(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
-      const Eigen::Vector3d aim(0.35 * std::sin(2 * std::numbers::pi * t / 13.0 + phase_[2]), SceneLayout::desk_centre().y(),
-                                -0.35 + 0.15 * std::sin(2 * std::numbers::pi * t / 9.0 + phase_[3]));
+      const Eigen::Vector3d aim(0.35 * std::sin(kTwoPi * t / 13.0 + phase_[2]), SceneLayout::desk_centre().y(),
+                                -0.35 + 0.15 * std::sin(kTwoPi * t / 9.0 + phase_[3]));
       return look_at(eye, aim);
     }
     case Kind::Rpy: {
       Eigen::Isometry3d T = look_at(Eigen::Vector3d::Zero(), SceneLayout::desk_centre());
-      T.linear() = T.linear() * cam_rot(0.35 * std::sin(2 * std::numbers::pi * t / 9.0 + phase_[0]),
-                                        0.25 * std::sin(2 * std::numbers::pi * t / 7.0 + phase_[1]),
-                                        0.25 * std::sin(2 * std::numbers::pi * t / 11.0 + phase_[2]));
+      T.linear() = T.linear() * cam_rot(0.35 * std::sin(kTwoPi * t / 9.0 + phase_[0]),
+                                        0.25 * std::sin(kTwoPi * t / 7.0 + phase_[1]),
+                                        0.25 * std::sin(kTwoPi * t / 11.0 + phase_[2]));
       return T;
     }
     case Kind::Static: {
       // Hand-held "static": millimetres and a few tenths of a degree of jitter.
       Eigen::Isometry3d T = look_at(Eigen::Vector3d::Zero(), SceneLayout::desk_centre());
       Eigen::Vector3d d;
-      for (int i = 0; i < 3; ++i) d[i] = 0.002 * std::sin(2 * std::numbers::pi * (0.7 + 0.6 * i) * t + phase_[i]);
+      for (int i = 0; i < 3; ++i) d[i] = 0.002 * std::sin(kTwoPi * (0.7 + 0.6 * i) * t + phase_[i]);
       T.translation() += d;
-      T.linear() = T.linear() * cam_rot(0.003 * std::sin(2 * std::numbers::pi * 0.9 * t + phase_[3]),
-                                        0.003 * std::sin(2 * std::numbers::pi * 1.3 * t + phase_[4]),
-                                        0.002 * std::sin(2 * std::numbers::pi * 1.7 * t + phase_[5]));
+      T.linear() = T.linear() * cam_rot(0.003 * std::sin(kTwoPi * 0.9 * t + phase_[3]),
+                                        0.003 * std::sin(kTwoPi * 1.3 * t + phase_[4]),
+                                        0.002 * std::sin(kTwoPi * 1.7 * t + phase_[5]));
       return T;
     }
     case Kind::Loop: {
@@ -138,7 +137,7 @@ Eigen::Isometry3d CameraMotion::pose_at(double dt) const {
       // furniture is 1-3 m away and in the depth range. Height and pitch
       // wobble with whole multiples of the turn's frequency: the path is
       // exactly periodic, so the start place is revisited with its start pose.
-      const double w = 2 * std::numbers::pi / kLoopPeriod;
+      const double w = kTwoPi / kLoopPeriod;
       const double heading = w * t;  // 0: looking along +y at the desk; turning right (clockwise from above)
       const Eigen::Vector3d out(std::sin(heading), std::cos(heading), 0.0);
       const Eigen::Vector3d centre(0.0, 0.6, 0.0);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "stillslam/sim/random.h"
+
 namespace stillslam::sim {
 namespace {
 
@@ -23,7 +25,7 @@ double smooth(double s) {
 Eigen::Vector2d dawdle_offset(const WalkingPathPlanner& planner, const WalkingPath& path, double stop_at,
                               PanelPainter& rng) {
   const Eigen::Vector2d stops[] = {path.a + stop_at * (path.b - path.a), path.b + stop_at * (path.a - path.b)};
-  const double angle = rng.uniform(0, 2 * std::numbers::pi);
+  const double angle = rng.uniform(0, kTwoPi);
   Eigen::Vector2d offset = rng.uniform(0.15, 0.3) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
   for (; offset.norm() > 0.02; offset *= 0.5) {
     bool ok = true;
@@ -159,13 +161,13 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
     V foot = person_foot(p, t);
     // Steps at ~1.8 Hz: the body rises twice per stride and sways sideways once.
     const double step = p.still ? 0.3 : 1.8;
-    const double bob = (p.still ? 0.005 : 0.025) * std::abs(std::sin(2 * std::numbers::pi * step * 0.5 * t + p.offset));
+    const double bob = (p.still ? 0.005 : 0.025) * std::abs(std::sin(kTwoPi * step * 0.5 * t + p.offset));
     V to_cam = cam - foot;
     to_cam.z() = 0;
     if (to_cam.norm() < 1e-6) to_cam = V(0, -1, 0);
     to_cam.normalize();
     const V right = V::UnitZ().cross(to_cam);  // image right as the camera sees the billboard
-    foot += right * ((p.still ? 0.01 : 0.02) * std::sin(2 * std::numbers::pi * step * 0.25 * t + p.offset));
+    foot += right * ((p.still ? 0.01 : 0.02) * std::sin(kTwoPi * step * 0.25 * t + p.offset));
     const double w = p.height * p.aspect;
     Quad q;
     q.origin = foot - right * (w / 2) + V(0, 0, p.height + bob);

@@ -3,8 +3,13 @@
 // and standard library (std:: distributions do not), so a seed means the same
 // scene everywhere.
 #include <cstdint>
+#include <numbers>
 
 namespace stillslam::sim {
+
+// A full turn: random phases and angles, and the periodic camera and people
+// motions (one name for the whole module, so its files share unity batches).
+inline constexpr double kTwoPi = 2 * std::numbers::pi;
 
 class SplitMix {
  public:
