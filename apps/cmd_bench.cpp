@@ -22,6 +22,7 @@ struct BenchArgs {
   int runs = 5;
   std::size_t max_frames = 0;
   bool deterministic = false;
+  bool raw_trajectory = false;
 };
 
 void run_bench(const BenchArgs& args) {
@@ -35,6 +36,7 @@ void run_bench(const BenchArgs& args) {
   BenchmarkOptions options;
   options.runs = args.runs;
   options.deterministic = args.deterministic;
+  options.refine_trajectory = !args.raw_trajectory;
   options.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.output_dir = args.out;
@@ -75,6 +77,7 @@ void add_bench_command(CLI::App& app) {
                   "repository the binary was built in; 'none' disables both)");
   cmd->add_flag("--deterministic", args->deterministic,
                 "synchronous local mapping (runs repeat bit for bit, so --runs 1 suffices)");
+  cmd->add_flag("--raw-trajectory", args->raw_trajectory, "the poses as tracked, without re-estimating each frame against the final map");
   cmd->callback([args] { run_bench(*args); });
 }
 

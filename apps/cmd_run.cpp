@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
+  bool raw_trajectory = false;
   std::string save_map, load_map;
   bool localization = false;
   std::size_t max_frames = 0;
@@ -102,6 +103,7 @@ void run(const RunArgs& args) {
   options.system.deterministic = args.deterministic;
   options.system.vocabulary_path = resolve_vocabulary_option(args.vocabulary);
   options.system.loop_closing = !args.no_loop_closing;
+  options.system.trajectory_refinement.enabled = !args.raw_trajectory;
   options.system.new_map_after_lost_frames = args.new_map_after_lost;
   options.system.load_map = args.load_map;
   options.system.localization_only = args.localization;
@@ -230,6 +232,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--vocabulary", args->vocabulary,
                   "ORB vocabulary for relocalization and loop closing (default: vocab/orb_vocabulary.bin of the "
                   "repository the binary was built in; 'none' disables both)");
+  cmd->add_flag("--raw-trajectory", args->raw_trajectory, "the poses as tracked, without re-estimating each frame against the final map");
   cmd->add_flag("--no-loop-closing", args->no_loop_closing,
                 "no loop detection/correction (keyframes are still indexed for relocalization)");
   cmd->add_option("--new-map-after-lost", args->new_map_after_lost,

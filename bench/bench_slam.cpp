@@ -5,9 +5,9 @@
 // deterministic mode twice and compares the trajectories bit for bit.
 //
 //   build/bench/bench_slam --config S.yaml --input DIR [--groundtruth GT]
-//       [--no-segmentation] [--deterministic] [--check-determinism]
+//       [--no-segmentation] [--deterministic] [--check-determinism] [--raw-trajectory]
 //       [--max-frames N] [--opencv-threads N] [--json OUT] [--vocabulary FILE]
-//       [--oracle-masks DIR] [--trajectory OUT]
+//       [--oracle-masks DIR] [--trajectory OUT] [--keyframe-trajectory OUT]
 //
 // --oracle-masks: a `stillslam simulate` folder; its ground-truth masks/ (in
 // associations.txt order) replace YOLO, with the settings' dilation and hold.
@@ -39,8 +39,8 @@ using namespace stillslam;
 namespace {
 
 struct Args {
-  std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory;
-  bool no_segmentation = false, deterministic = false, check_determinism = false;
+  std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory, keyframe_trajectory;
+  bool no_segmentation = false, deterministic = false, check_determinism = false, raw_trajectory = false;
   std::size_t max_frames = 0;
   int opencv_threads = -1;
 };
@@ -54,9 +54,11 @@ Args parse(int argc, char** argv) {
   app.add_option("--json", a.json, "write the results as JSON here");
   app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary (relocalization, loop closing; default: none)");
   app.add_option("--trajectory", a.trajectory, "write the estimated trajectory here (TUM format)");
+  app.add_option("--keyframe-trajectory", a.keyframe_trajectory, "write the keyframes' poses here (TUM format)");
   app.add_option("--oracle-masks", a.oracle_masks, "simulate folder whose ground-truth masks/ replace YOLO");
   app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
   app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
+  app.add_flag("--raw-trajectory", a.raw_trajectory, "the tracked poses, not re-estimated against the final map");
   app.add_flag("--check-determinism", a.check_determinism, "run the deterministic mode twice and compare");
   app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
   app.add_option("--opencv-threads", a.opencv_threads, "cv::setNumThreads (-1: OpenCV's default)")
@@ -110,6 +112,7 @@ RunResult run_once(const Settings& settings, const Dataset& dataset, const Args&
     options.system.segmenter_factory = [dir = a.oracle_masks] { return std::make_unique<OracleSegmenter>(dir); };
   }
   options.system.deterministic = deterministic;
+  options.system.trajectory_refinement.enabled = !a.raw_trajectory;
   if (a.max_frames > 0) options.max_frames = a.max_frames;
   return run_dataset(settings, dataset, options);
 }
@@ -125,6 +128,8 @@ int bench(const Args& a) {
   out["input"] = a.input;
   out["summary"] = to_json(s);
   out["local_mapping"] = to_json(r.mapper);
+  out["frames"] = nlohmann::json::array();
+  for (const FrameStats& f : r.frames) out["frames"].push_back(to_json(f));
   std::printf("%s (%s, segmentation %s, %s)\n", a.input.c_str(), to_string(dataset->sensor()),
               a.no_segmentation ? "off" : "on", a.deterministic ? "deterministic" : "concurrent local mapping");
   std::printf("  frames %zu, tracked %zu (%.1f %%), lost %zu, keyframes %zu (inserted %zu, culled %d), map points %zu\n",
@@ -173,6 +178,7 @@ int bench(const Args& a) {
     out["deterministic_identical"] = same;
   }
   if (!a.trajectory.empty()) write_trajectory(a.trajectory, r.trajectory, TrajectoryFormat::Tum);
+  if (!a.keyframe_trajectory.empty()) write_trajectory(a.keyframe_trajectory, r.keyframes, TrajectoryFormat::Tum);
   if (!a.json.empty()) std::ofstream(a.json) << out.dump(1) << "\n";
   return 0;
 }

@@ -56,6 +56,7 @@ RunRecord run_once(const Settings& settings, const Dataset& dataset, const Traje
   ro.system.deterministic = options.deterministic;
   ro.system.vocabulary_path = options.vocabulary_path;
   ro.system.loop_closing = options.loop_closing;
+  ro.system.trajectory_refinement.enabled = options.refine_trajectory;
   ro.max_frames = options.max_frames;
   ro.realtime = false;
   ro.on_frame = [&segmentation_active](const FrameStats&, const System& system) {

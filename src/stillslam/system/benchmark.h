@@ -28,6 +28,7 @@ struct BenchmarkOptions {
   // Relocalization and loop closing (SystemOptions::vocabulary_path); empty: off.
   std::filesystem::path vocabulary_path;
   bool loop_closing = true;
+  bool refine_trajectory = true;  // SystemOptions::trajectory_refinement
   // Each run's trajectory.txt / keyframes.txt go to
   // <output_dir>/<sequence>/seg_{on,off}/run_<k>/. Empty: not written.
   std::filesystem::path output_dir;

@@ -322,7 +322,8 @@ FrameStats System::process(const SensorFrame& input) {
   stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
-    records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference});
+    records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference, result.new_keyframe, {}});
+    if (options_.trajectory_refinement.enabled) records_.back().observations = collect_frame_observations(frame);
     last_T_world_cam_ = frame.T_cam_world().inverse();
     stats.has_pose = true;
   }
@@ -362,7 +363,15 @@ std::vector<MapPose> System::trajectory_with_maps() const {
     for (std::size_t i = 0; i < records_.size(); ++i) {
       const FrameRecord& r = records_[i];
       if (done[i] || !members.count(r.reference.get())) continue;
-      const Eigen::Isometry3d T_cam_world = r.T_cam_ref * r.reference->T_cam_world_resolved();
+      Eigen::Isometry3d T_cam_world = r.T_cam_ref * r.reference->T_cam_world_resolved();
+      // A keyframe's own pose comes from bundle adjustment, with every
+      // observation of it since: better than one frame's motion-only BA.
+      const bool active_keyframe = r.keyframe && !r.reference->is_bad();
+      if (options_.trajectory_refinement.enabled && !active_keyframe) {
+        const auto refined = refine_frame_pose(r.reference->setup(), T_cam_world, r.observations,
+                                               options_.trajectory_refinement);
+        if (refined) T_cam_world = *refined;
+      }
       out[i] = {{r.timestamp, T_cam_world.inverse()}, map->id()};
       done[i] = true;
     }

@@ -38,6 +38,7 @@
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/system/frame_stats.h"
+#include "stillslam/system/trajectory_refinement.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker.h"
@@ -80,6 +81,9 @@ struct SystemOptions {
   // Track against the loaded map without changing it: no keyframes, map
   // points, local mapping, loop closing, new maps or merges. Needs load_map.
   bool localization_only = false;
+  // Re-estimate every tracked frame against the final map when the
+  // trajectory is read (system/trajectory_refinement.h).
+  TrajectoryRefinementOptions trajectory_refinement;
 };
 
 // A frame's pose with the id of the map it is expressed in.
@@ -117,7 +121,9 @@ class System {
   void shutdown();
 
   // Every tracked frame, each in the frame of the map holding its reference
-  // keyframe (maps merged into another are in that map's frame).
+  // keyframe (maps merged into another are in that map's frame). With
+  // trajectory refinement each pose is re-estimated against the map as it is
+  // now, so read it after shutdown() for the final answer.
   Trajectory trajectory() const;
   std::vector<MapPose> trajectory_with_maps() const;
   Trajectory keyframe_trajectory() const;  // active keyframes of all maps
@@ -151,6 +157,8 @@ class System {
     double timestamp;
     KeyFramePtr reference;
     Eigen::Isometry3d T_cam_ref;
+    bool keyframe;                   // the frame became `reference`
+    FrameObservations observations;  // empty without trajectory refinement
   };
 
   // Local mapping and loop closing for the active map.
