@@ -76,6 +76,8 @@ TEST(FrameBuilder, DynamicKeypointsAreDroppedBeforeAssociation) {
   const Frame kept = masked.build(rgbd_input(), 0, &s_masked);
   EXPECT_EQ(s_masked.detections, 1);
   EXPECT_NEAR(s_masked.mask_coverage, 0.5, 1e-9);
+  EXPECT_NEAR(kept.masked_fraction(), 0.5, 1e-6);  // what tracking's initialization looks at
+  EXPECT_EQ(all.masked_fraction(), 0.f);
   int right_half = 0;
   for (std::size_t i = 0; i < all.size(); ++i) right_half += std::lround(all.keypoints_raw()[i].pt.x) >= 320 ? 1 : 0;
   EXPECT_LT(right_half, 0.6 * s_plain.keypoints_after);

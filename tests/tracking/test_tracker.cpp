@@ -53,6 +53,44 @@ TEST(Tracker, NeedsEnoughDepthToInitialize) {
   EXPECT_EQ(map.num_keyframes(), 0u);
 }
 
+TEST(Tracker, WaitsForAViewThatIsNotMostlyMasked) {
+  test::SyntheticScene scene(2500);
+  Map map;
+  TrackerOptions options;
+  options.init_min_keypoints = 300;
+  options.init_max_masked_fraction = 0.5;
+  options.init_masked_wait_frames = 3;
+  Tracker tracker(map, options, {});
+  std::uint64_t id = 0;
+  // Too little depth: waiting for that does not use up the masked-view wait.
+  for (int i = 0; i < 5; ++i) {
+    test::SyntheticScene sparse(100);
+    Frame f = sparse.make_frame(id++, test::pose_at(0));
+    f.set_masked_fraction(0.7f);
+    EXPECT_EQ(tracker.track(f).state, TrackingState::NotInitialized);
+  }
+  for (int i = 0; i < 3; ++i) {
+    Frame f = scene.make_frame(id++, test::pose_at(0));
+    f.set_masked_fraction(0.7f);
+    const TrackingResult r = tracker.track(f);
+    EXPECT_EQ(r.state, TrackingState::NotInitialized) << "frame " << i;
+    EXPECT_NE(r.reason.find("70 %"), std::string::npos) << r.reason;
+  }
+  EXPECT_EQ(map.num_keyframes(), 0u);
+  // After the wait, a mostly masked view starts the map anyway.
+  Frame f = scene.make_frame(id++, test::pose_at(0));
+  f.set_masked_fraction(0.7f);
+  EXPECT_EQ(tracker.track(f).state, TrackingState::Ok);
+  EXPECT_EQ(map.num_keyframes(), 1u);
+
+  // A view half masked or less starts at once.
+  Map other;
+  Tracker fresh(other, options, {});
+  Frame g = scene.make_frame(0, test::pose_at(0));
+  g.set_masked_fraction(0.5f);
+  EXPECT_EQ(fresh.track(g).state, TrackingState::Ok);
+}
+
 TEST(Tracker, LostWhenTheViewJumpsAwayAndRecoversWhenBack) {
   test::SyntheticScene scene(2500);
   Map map;

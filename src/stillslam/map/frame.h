@@ -49,6 +49,9 @@ class Frame {
     return grid_->features_in_area(x, y, r, min_level, max_level);
   }
   int num_with_depth() const;
+  // Share of the image hidden by the dynamic mask (0 without segmentation).
+  float masked_fraction() const { return masked_fraction_; }
+  void set_masked_fraction(float f) { masked_fraction_ = f; }
 
   // Matched map points and outlier flags.
   const MapPointPtr& map_point(std::size_t i) const { return map_points_[i]; }
@@ -82,6 +85,7 @@ class Frame {
   std::vector<char> outlier_;
   std::optional<Eigen::Isometry3d> T_cam_world_;
   std::shared_ptr<KeyFrame> reference_keyframe_;
+  float masked_fraction_ = 0;
 };
 
 }  // namespace stillslam

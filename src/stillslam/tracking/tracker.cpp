@@ -1,6 +1,7 @@
 #include "stillslam/tracking/tracker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <unordered_set>
 
@@ -31,6 +32,7 @@ void Tracker::start_new_map(Map& map) {
   last_keyframe_frame_id_ = 0;
   last_lost_frame_id_ = 0;
   was_lost_ = false;
+  masked_frames_waited_ = 0;
 }
 
 void Tracker::switch_map(Map& map) { map_ = &map; }
@@ -49,12 +51,14 @@ TrackingResult Tracker::track(Frame& frame) {
       result.reason = "localization only: no map to track";
       return result;
     }
-    if (!initialize(frame)) {
+    const std::string blocker = initialization_blocker(frame);
+    if (!blocker.empty()) {
+      if (frame.num_with_depth() >= options_.init_min_keypoints) ++masked_frames_waited_;
       result.state = state_;
-      result.reason = "waiting for a frame with " + std::to_string(options_.init_min_keypoints) +
-                      " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")";
+      result.reason = blocker;
       return result;
     }
+    initialize(frame);
     result.state = state_;
     result.reason = "initialized";
     result.new_keyframe = true;
@@ -109,8 +113,21 @@ TrackingResult Tracker::track(Frame& frame) {
   return result;
 }
 
-bool Tracker::initialize(Frame& frame) {
-  if (frame.num_with_depth() < options_.init_min_keypoints) return false;
+std::string Tracker::initialization_blocker(const Frame& frame) const {
+  if (frame.num_with_depth() < options_.init_min_keypoints) {
+    return "waiting for a frame with " + std::to_string(options_.init_min_keypoints) + " keypoints with depth (has " +
+           std::to_string(frame.num_with_depth()) + ")";
+  }
+  if (frame.masked_fraction() > options_.init_max_masked_fraction &&
+      masked_frames_waited_ < options_.init_masked_wait_frames) {
+    return "waiting for a frame with at most " + std::to_string(std::lround(100 * options_.init_max_masked_fraction)) +
+           " % masked (has " + std::to_string(std::lround(100 * frame.masked_fraction())) + " %)";
+  }
+  return {};
+}
+
+void Tracker::initialize(Frame& frame) {
+  masked_frames_waited_ = 0;
   frame.set_pose(Eigen::Isometry3d::Identity());
   KeyFramePtr kf = map_->create_keyframe(frame);
   for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -131,7 +148,6 @@ bool Tracker::initialize(Frame& frame) {
   last_frame_ = frame;
   state_ = TrackingState::Ok;
   if (link_.insert_keyframe) link_.insert_keyframe(kf);
-  return true;
 }
 
 // Re-anchors the last frame on its reference keyframe (which local BA may

@@ -64,7 +64,9 @@ class Tracker {
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
 
  private:
-  bool initialize(Frame& frame);
+  // Empty when the frame can start the map, else why not.
+  std::string initialization_blocker(const Frame& frame) const;
+  void initialize(Frame& frame);
   bool track_with_motion_model(Frame& frame, TrackingResult& result);
   bool track_reference_keyframe(Frame& frame, TrackingResult& result);
   bool track_while_lost(Frame& frame, TrackingResult& result);
@@ -90,6 +92,7 @@ class Tracker {
   std::uint64_t last_lost_frame_id_ = 0;
   bool was_lost_ = false;
   std::uint64_t temporary_point_id_ = 0;
+  int masked_frames_waited_ = 0;  // frames that had the depth but too much mask
 };
 
 }  // namespace stillslam

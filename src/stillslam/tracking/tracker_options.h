@@ -5,6 +5,13 @@ namespace stillslam {
 
 struct TrackerOptions {
   int init_min_keypoints = 500;        // keypoints with depth needed to initialize
+  // The extractor puts its whole budget outside the dynamic mask, so 500
+  // keypoints can all sit on a sliver of scene when people fill the view; a
+  // map started there is poorly conditioned. Frames with more of the image
+  // masked than this do not initialize, for at most init_masked_wait_frames
+  // such frames (then any frame with enough depth does).
+  double init_max_masked_fraction = 0.5;
+  int init_masked_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
