@@ -58,7 +58,10 @@ void write_stereo_settings(const std::filesystem::path& file, const CameraCalibr
       << "Camera.width: " << c.width << "\nCamera.height: " << c.height << "\n"
       << "Camera.fps: " << o.fps << "\nCamera.RGB: 1\n\n"
       << "Stereo.ThDepth: 40.0\n\n";
-  common_tail(out, model, 1200);
+  // Only about half the left keypoints find their right match (fewer when
+  // people hide part of the view), so stereo extracts more than RGB-D's 1000
+  // to get as many keypoints with depth.
+  common_tail(out, model, 2000);
 }
 
 void write_euroc_sensor_yaml(const std::filesystem::path& file, const CameraCalibration& c,
