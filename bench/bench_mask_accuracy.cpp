@@ -54,12 +54,15 @@ int main(int argc, char** argv) {
   fs::path seq;
   int step = 10;
   std::vector<std::string> models;
-  bool gray = false;
+  bool gray = false, per_frame = false;
+  std::size_t max_frames = 0;
   CLI::App app("Dynamic-mask accuracy against a generated sequence's masks/", "bench_mask_accuracy");
   app.add_option("--sequence", seq, "`stillslam simulate` folder")->required();
   app.add_option("--step", step, "every k-th frame")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--model", models, "ONNX model(s) (default: models/ and ../shared/models/yolo-seg/yolo11n-seg_*)");
   app.add_flag("--gray", gray, "segment the frames as a monochrome camera gives them");
+  app.add_flag("--per-frame", per_frame, "print each frame's figures too");
+  app.add_option("--max-frames", max_frames, "only the first N sampled frames (0: all)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -81,7 +84,8 @@ int main(int argc, char** argv) {
     std::sort(models.begin(), models.end());
   }
   try {
-    const std::vector<std::string> frames = sampled_frames(seq, step);
+    std::vector<std::string> frames = sampled_frames(seq, step);
+    if (max_frames > 0 && frames.size() > max_frames) frames.resize(max_frames);
     std::printf("%zu frames of %s (every %d-th)%s\n", frames.size(), seq.string().c_str(), step,
                 gray ? ", segmented in gray" : "");
     std::printf("%-40s %8s %9s %8s %12s\n", "model", "recall", "precision", "IoU", "cpu ms/frame");
@@ -104,9 +108,14 @@ int main(int argc, char** argv) {
         const cv::Mat1b pred = dynamic_mask(segmenter.segment(bgr), person, bgr.size(), 0);
         cpu += process_cpu_ms() - t0;
         const cv::Mat1b g = gt > 0;
-        inter += cv::countNonZero(pred & g);
-        truth += cv::countNonZero(g);
-        predicted += cv::countNonZero(pred);
+        const double i = cv::countNonZero(pred & g), t = cv::countNonZero(g), p = cv::countNonZero(pred);
+        inter += i;
+        truth += t;
+        predicted += p;
+        if (per_frame) {
+          std::printf("  %-20s truth %5.1f %%  recall %6.3f  precision %6.3f\n", name.c_str(),
+                      100.0 * t / static_cast<double>(g.total()), t > 0 ? i / t : 1.0, p > 0 ? i / p : 1.0);
+        }
       }
       std::printf("%-40s %8.3f %9.3f %8.3f %12.1f\n", fs::path(model).filename().string().c_str(),
                   truth > 0 ? inter / truth : 0.0, predicted > 0 ? inter / predicted : 0.0,
