@@ -26,6 +26,8 @@ class SyntheticScene {
 
   const std::shared_ptr<CameraSetup>& setup() const { return setup_; }
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  // Moves one point (a dynamic object); it keeps its descriptor.
+  void move_point(std::size_t i, const Eigen::Vector3d& offset) { points_[i] += offset; }
 
   // Frame seeing the scene from T_cam_world (pose NOT set on the frame).
   // point_of_keypoint receives the scene point index of every keypoint.

@@ -44,4 +44,11 @@ std::optional<Eigen::Vector3d> Frame::unproject(std::size_t i) const {
   return T_cam_world_->inverse() * setup_->camera.unproject(Eigen::Vector2d(pt.x, pt.y), z);
 }
 
+void Frame::set_dynamic_mask(cv::Mat1b mask) {
+  dynamic_mask_ = std::move(mask);
+  masked_fraction_ = dynamic_mask_.empty() ? 0.f
+                                           : static_cast<float>(cv::countNonZero(dynamic_mask_)) /
+                                                 static_cast<float>(dynamic_mask_.total());
+}
+
 }  // namespace stillslam

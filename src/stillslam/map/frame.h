@@ -49,9 +49,11 @@ class Frame {
     return grid_->features_in_area(x, y, r, min_level, max_level);
   }
   int num_with_depth() const;
-  // Share of the image hidden by the dynamic mask (0 without segmentation).
+  // The dynamic mask (255: hidden, image size) and the share of the image
+  // it covers; empty and 0 without segmentation.
+  const cv::Mat1b& dynamic_mask() const { return dynamic_mask_; }
   float masked_fraction() const { return masked_fraction_; }
-  void set_masked_fraction(float f) { masked_fraction_ = f; }
+  void set_dynamic_mask(cv::Mat1b mask);
 
   // Matched map points and outlier flags.
   const MapPointPtr& map_point(std::size_t i) const { return map_points_[i]; }
@@ -85,6 +87,7 @@ class Frame {
   std::vector<char> outlier_;
   std::optional<Eigen::Isometry3d> T_cam_world_;
   std::shared_ptr<KeyFrame> reference_keyframe_;
+  cv::Mat1b dynamic_mask_;
   float masked_fraction_ = 0;
 };
 

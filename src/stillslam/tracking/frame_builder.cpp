@@ -104,9 +104,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
 
   Frame frame(frame_id, input.timestamp, setup_, std::move(left.keypoints), std::move(undistorted),
               std::move(left.descriptors), std::move(u_right), std::move(depth));
-  if (!exclude.empty()) {
-    frame.set_masked_fraction(static_cast<float>(cv::countNonZero(exclude)) / static_cast<float>(exclude.total()));
-  }
+  frame.set_dynamic_mask(exclude);
   st.keypoints_with_depth = frame.num_with_depth();
   st.total_ms = total.elapsed_ms();
   return frame;

@@ -32,7 +32,10 @@ void Tracker::start_new_map(Map& map) {
   last_keyframe_frame_id_ = 0;
   last_lost_frame_id_ = 0;
   was_lost_ = false;
-  masked_frames_waited_ = 0;
+  start_candidate_.reset();
+  start_keep_.clear();
+  start_confirmations_ = 0;
+  start_frames_rejected_ = 0;
 }
 
 void Tracker::switch_map(Map& map) { map_ = &map; }
@@ -51,21 +54,21 @@ TrackingResult Tracker::track(Frame& frame) {
       result.reason = "localization only: no map to track";
       return result;
     }
-    const std::string blocker = initialization_blocker(frame);
-    if (!blocker.empty()) {
-      if (frame.num_with_depth() >= options_.init_min_keypoints) ++masked_frames_waited_;
+    const Start start = try_to_start_map(frame, result);
+    if (start == Start::Waiting) {
       result.state = state_;
-      result.reason = blocker;
       return result;
     }
-    initialize(frame);
-    result.state = state_;
-    result.reason = "initialized";
-    result.new_keyframe = true;
-    result.inliers = frame.num_matches();
-    result.reference = reference_keyframe_;
-    result.T_cam_reference = Eigen::Isometry3d::Identity();
-    return result;
+    if (start == Start::FromThisFrame) {
+      result.state = state_;
+      result.reason = "initialized";
+      result.new_keyframe = true;
+      result.inliers = frame.num_matches();
+      result.reference = reference_keyframe_;
+      result.T_cam_reference = Eigen::Isometry3d::Identity();
+      return result;
+    }
+    // Started from an earlier frame: this one is tracked against it.
   }
 
   update_last_frame();
@@ -113,26 +116,51 @@ TrackingResult Tracker::track(Frame& frame) {
   return result;
 }
 
-std::string Tracker::initialization_blocker(const Frame& frame) const {
+Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   if (frame.num_with_depth() < options_.init_min_keypoints) {
-    return "waiting for a frame with " + std::to_string(options_.init_min_keypoints) + " keypoints with depth (has " +
-           std::to_string(frame.num_with_depth()) + ")";
+    start_candidate_.reset();
+    result.reason = "waiting for a frame with " + std::to_string(options_.init_min_keypoints) +
+                    " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")";
+    return Start::Waiting;
   }
-  if (frame.masked_fraction() > options_.init_max_masked_fraction &&
-      masked_frames_waited_ < options_.init_masked_wait_frames) {
-    return "waiting for a frame with at most " + std::to_string(std::lround(100 * options_.init_max_masked_fraction)) +
-           " % masked (has " + std::to_string(std::lround(100 * frame.masked_fraction())) + " %)";
+  // Without segmentation nothing is known to move; after a long wait, take what comes.
+  if (frame.dynamic_mask().empty() || start_frames_rejected_ >= options_.init_wait_frames) {
+    initialize(frame);
+    return Start::FromThisFrame;
   }
-  return {};
+  if (start_candidate_) {
+    const InitialViewCheck check = check_initial_view(*start_candidate_, frame, options_.initial_view);
+    if (check.accepted) {
+      for (std::size_t i = 0; i < start_keep_.size(); ++i) start_keep_[i] = start_keep_[i] && check.keep[i];
+      if (++start_confirmations_ >= options_.init_confirm_frames) {
+        Frame first = std::move(*start_candidate_);
+        const std::vector<bool> keep = std::move(start_keep_);
+        start_candidate_.reset();
+        initialize(first, keep);
+        return Start::FromAnEarlierFrame;
+      }
+      result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
+                      std::to_string(options_.init_confirm_frames) + " frames";
+      return Start::Waiting;
+    }
+    ++start_frames_rejected_;
+    result.reason = check.reason;
+  } else {
+    result.reason = "checking the first keyframe against the next frames";
+  }
+  start_candidate_ = frame;
+  start_keep_.assign(frame.size(), true);
+  start_confirmations_ = 0;
+  return Start::Waiting;
 }
 
-void Tracker::initialize(Frame& frame) {
-  masked_frames_waited_ = 0;
+void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
+  start_frames_rejected_ = 0;
   frame.set_pose(Eigen::Isometry3d::Identity());
   KeyFramePtr kf = map_->create_keyframe(frame);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const auto p = kf->unproject(i);
-    if (!p) continue;
+    if (!p || (!keep.empty() && !keep[i])) continue;
     MapPointPtr mp = map_->create_map_point(*p, kf.get());
     mp->add_observation(kf.get(), i);
     kf->set_map_point(i, mp);

@@ -64,9 +64,12 @@ class Tracker {
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
 
  private:
-  // Empty when the frame can start the map, else why not.
-  std::string initialization_blocker(const Frame& frame) const;
-  void initialize(Frame& frame);
+  enum class Start { Waiting, FromThisFrame, FromAnEarlierFrame };
+  // Starts the map from this frame, or (with segmentation on) from an
+  // earlier one that this frame confirms; sets the reason while waiting.
+  Start try_to_start_map(Frame& frame, TrackingResult& result);
+  // keep: per keypoint, may become a map point (empty: all).
+  void initialize(Frame& frame, const std::vector<bool>& keep = {});
   bool track_with_motion_model(Frame& frame, TrackingResult& result);
   bool track_reference_keyframe(Frame& frame, TrackingResult& result);
   bool track_while_lost(Frame& frame, TrackingResult& result);
@@ -92,7 +95,12 @@ class Tracker {
   std::uint64_t last_lost_frame_id_ = 0;
   bool was_lost_ = false;
   std::uint64_t temporary_point_id_ = 0;
-  int masked_frames_waited_ = 0;  // frames that had the depth but too much mask
+  // The first keyframe awaiting confirmation by the next frames, with the
+  // keypoints that may become map points.
+  std::optional<Frame> start_candidate_;
+  std::vector<bool> start_keep_;
+  int start_confirmations_ = 0;
+  int start_frames_rejected_ = 0;  // frames that had the depth but failed the check
 };
 
 }  // namespace stillslam

@@ -1,17 +1,20 @@
 #pragma once
 #include "stillslam/optimize/pose_optimizer.h"
+#include "stillslam/tracking/initial_view_check.h"
 
 namespace stillslam {
 
 struct TrackerOptions {
   int init_min_keypoints = 500;        // keypoints with depth needed to initialize
-  // The extractor puts its whole budget outside the dynamic mask, so 500
-  // keypoints can all sit on a sliver of scene when people fill the view; a
-  // map started there is poorly conditioned. Frames with more of the image
-  // masked than this do not initialize, for at most init_masked_wait_frames
-  // such frames (then any frame with enough depth does).
-  double init_max_masked_fraction = 0.5;
-  int init_masked_wait_frames = 30;
+  // With segmentation on, the first keyframe is checked against each of the
+  // next init_confirm_frames frames (tracking/initial_view_check.h): a person
+  // the detector missed in one frame is usually found in one of the next,
+  // and a view about to be hidden is not a good start. After
+  // init_wait_frames rejected frames that had the depth, any frame with
+  // enough depth starts the map.
+  InitialViewCheckOptions initial_view;
+  int init_confirm_frames = 2;
+  int init_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)

@@ -1,0 +1,83 @@
+#include "stillslam/tracking/initial_view_check.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "stillslam/features/descriptor_matcher.h"
+#include "stillslam/geometry/pnp.h"
+#include "stillslam/map/matching_thresholds.h"
+
+namespace stillslam {
+
+namespace {
+
+int percent(double share) { return static_cast<int>(std::lround(100 * share)); }
+
+// The mask is looked up at undistorted coordinates: near the border of a
+// distorted image a few pixels off, which the mask dilation covers.
+bool in_mask(const cv::Mat1b& mask, const Eigen::Vector2d& pixel) {
+  const int x = static_cast<int>(std::floor(pixel.x())), y = static_cast<int>(std::floor(pixel.y()));
+  return !mask.empty() && x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask(y, x) != 0;
+}
+
+}  // namespace
+
+InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const InitialViewCheckOptions& options) {
+  InitialViewCheck out;
+  out.keep.assign(first.size(), true);
+  const double masked = std::max(first.masked_fraction(), next.masked_fraction());
+  if (masked > options.max_masked_fraction) {
+    out.reason = "waiting for two frames at most " + std::to_string(percent(options.max_masked_fraction)) +
+                 " % masked (has " + std::to_string(percent(masked)) + " %)";
+    return out;
+  }
+
+  const PinholeCamera& camera = first.setup().camera;
+  std::vector<std::size_t> with_depth;
+  cv::Mat query;
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    if (first.depth(i) <= 0) continue;
+    with_depth.push_back(i);
+    query.push_back(first.descriptors().row(static_cast<int>(i)));
+  }
+  DescriptorMatchOptions match_options;
+  match_options.max_distance = kDescriptorDistanceLow;
+  const std::vector<cv::DMatch> matches =
+      query.empty() ? std::vector<cv::DMatch>{} : match_descriptors(query, next.descriptors(), match_options);
+  std::vector<Eigen::Vector3d> points;  // in the first camera's frame
+  std::vector<Eigen::Vector2d> pixels;
+  for (const cv::DMatch& m : matches) {
+    const std::size_t i = with_depth[static_cast<std::size_t>(m.queryIdx)];
+    const cv::Point2f& p = first.keypoint(i).pt;
+    points.push_back(camera.unproject(Eigen::Vector2d(p.x, p.y), first.depth(i)));
+    const cv::Point2f& q = next.keypoint(static_cast<std::size_t>(m.trainIdx)).pt;
+    pixels.emplace_back(q.x, q.y);
+  }
+  out.matches = static_cast<int>(matches.size());
+  if (out.matches < options.min_matches) {
+    out.reason = "first keyframe check: " + std::to_string(out.matches) + " matches with the next frame";
+    return out;
+  }
+  PnpRansacOptions pnp;
+  pnp.max_reprojection_error_px = options.max_reprojection_error_px;
+  const PnpResult motion = solve_pnp_ransac(camera, points, pixels, pnp);
+  out.moving = motion.success ? out.matches - motion.num_inliers : out.matches;
+  if (out.moving > options.max_moving_share * out.matches) {
+    out.reason = "first keyframe check: " + std::to_string(out.moving) + " of " + std::to_string(out.matches) +
+                 " matches move against the camera (a dynamic object the mask missed?)";
+    return out;
+  }
+
+  for (std::size_t k = 0; k < matches.size(); ++k) {
+    if (!motion.inlier[k]) out.keep[with_depth[static_cast<std::size_t>(matches[k].queryIdx)]] = false;
+  }
+  for (const std::size_t i : with_depth) {
+    const cv::Point2f& p = first.keypoint(i).pt;
+    const Eigen::Vector3d in_next = motion.T_cam_world * camera.unproject(Eigen::Vector2d(p.x, p.y), first.depth(i));
+    if (in_next.z() > 0 && in_mask(next.dynamic_mask(), camera.project(in_next))) out.keep[i] = false;
+  }
+  out.accepted = true;
+  return out;
+}
+
+}  // namespace stillslam

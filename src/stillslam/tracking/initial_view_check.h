@@ -1,0 +1,41 @@
+#pragma once
+// With segmentation on, a map's first keyframe is checked against the next
+// frame before it is created. A detector can miss a person in one frame
+// (cut by the image border, filling the view) and find them in the next; a
+// first keyframe built on that person would anchor the map on something that
+// walks away. The check:
+//  - neither frame may be more than max_masked_fraction masked (500 keypoints
+//    can sit on a sliver of scene, as the extractor's budget all goes outside
+//    the mask);
+//  - the first frame's keypoints with depth are matched to the next frame by
+//    descriptor, and a PnP RANSAC finds the camera motion between them; if
+//    more than max_moving_share of the matches disagree with it, something
+//    unmasked moves, and the first frame is rejected;
+//  - otherwise keypoints whose match disagrees, or whose 3D point lands in
+//    the next frame's dynamic mask, are left out of the first keyframe.
+#include <string>
+#include <vector>
+
+#include "stillslam/map/frame.h"
+
+namespace stillslam {
+
+struct InitialViewCheckOptions {
+  double max_masked_fraction = 0.5;
+  double max_moving_share = 0.2;
+  int min_matches = 50;  // fewer: the two frames do not overlap enough to judge
+  double max_reprojection_error_px = 2.5;
+};
+
+struct InitialViewCheck {
+  bool accepted = false;
+  std::string reason;      // why not, when rejected
+  int matches = 0;         // first-frame keypoints with depth matched in the next frame
+  int moving = 0;          // of those, disagreeing with the camera motion
+  std::vector<bool> keep;  // per first-frame keypoint: may become a map point
+};
+
+// Both frames from the same camera; `next` needs no pose.
+InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const InitialViewCheckOptions& options);
+
+}  // namespace stillslam

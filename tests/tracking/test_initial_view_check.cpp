@@ -1,0 +1,109 @@
+// The first keyframe's check against the next frame, on synthetic scenes in
+// which chosen points move between the two frames.
+#include <gtest/gtest.h>
+
+#include "map/synthetic_scene.h"
+#include "stillslam/tracking/initial_view_check.h"
+
+namespace stillslam {
+namespace {
+
+cv::Mat1b empty_mask() { return cv::Mat1b(480, 640, std::uint8_t{0}); }
+
+// Points whose index is below `share` of the scene: a "person" (they are
+// spread over the whole view, so their share of the matches is about `share`).
+std::vector<std::size_t> first_points(const test::SyntheticScene& scene, double share) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(share * scene.points().size()); ++i) out.push_back(i);
+  return out;
+}
+
+struct TwoFrames {
+  Frame first, next;
+  std::vector<std::size_t> first_point;  // scene point of each first-frame keypoint
+};
+
+TwoFrames two_frames(test::SyntheticScene& scene, const std::vector<std::size_t>& movers, double move_m) {
+  TwoFrames t;
+  t.first = scene.make_frame(0, test::pose_at(0), &t.first_point);
+  t.first.set_dynamic_mask(empty_mask());
+  for (std::size_t i : movers) scene.move_point(i, Eigen::Vector3d(move_m, 0, 0));
+  t.next = scene.make_frame(1, test::pose_at(0.02, 0, 1));
+  t.next.set_dynamic_mask(empty_mask());
+  return t;
+}
+
+TEST(InitialViewCheck, AcceptsAStaticViewWhole) {
+  test::SyntheticScene scene(1500);
+  const TwoFrames t = two_frames(scene, {}, 0);
+  const InitialViewCheck c = check_initial_view(t.first, t.next, {});
+  EXPECT_TRUE(c.accepted) << c.reason;
+  EXPECT_GT(c.matches, 500);
+  EXPECT_EQ(c.moving, 0);
+  EXPECT_EQ(std::count(c.keep.begin(), c.keep.end(), true), static_cast<long>(t.first.size()));
+}
+
+TEST(InitialViewCheck, RejectsAViewWhereMuchMovesUnmasked) {
+  test::SyntheticScene scene(1500);
+  const TwoFrames t = two_frames(scene, first_points(scene, 0.35), 0.05);
+  const InitialViewCheck c = check_initial_view(t.first, t.next, {});
+  EXPECT_FALSE(c.accepted);
+  EXPECT_NEAR(static_cast<double>(c.moving) / c.matches, 0.35, 0.05);
+  EXPECT_NE(c.reason.find("move"), std::string::npos) << c.reason;
+}
+
+TEST(InitialViewCheck, LeavesOutAFewMovingPoints) {
+  test::SyntheticScene scene(1500);
+  const std::vector<std::size_t> movers = first_points(scene, 0.1);
+  const TwoFrames t = two_frames(scene, movers, 0.1);
+  const InitialViewCheck c = check_initial_view(t.first, t.next, {});
+  ASSERT_TRUE(c.accepted) << c.reason;
+  int moving_kept = 0, static_dropped = 0;
+  for (std::size_t k = 0; k < t.first.size(); ++k) {
+    const bool moves = t.first_point[k] < movers.size();
+    moving_kept += moves && c.keep[k] ? 1 : 0;
+    static_dropped += !moves && !c.keep[k] ? 1 : 0;
+  }
+  EXPECT_LE(moving_kept, 2);  // a mover that left the view has no match to judge it by
+  EXPECT_EQ(static_dropped, 0);
+  EXPECT_GT(c.moving, 40);
+}
+
+TEST(InitialViewCheck, LeavesOutWhatTheNextFramesMaskCovers) {
+  // The segmenter missed a person in the first frame and found them in the next.
+  test::SyntheticScene scene(1500);
+  TwoFrames t = two_frames(scene, {}, 0);
+  cv::Mat1b mask = empty_mask();
+  mask.colRange(0, 200).setTo(255);
+  t.next.set_dynamic_mask(mask);
+  const InitialViewCheck c = check_initial_view(t.first, t.next, {});
+  ASSERT_TRUE(c.accepted) << c.reason;
+  int kept_left = 0, dropped_right = 0;
+  for (std::size_t k = 0; k < t.first.size(); ++k) {
+    // The camera moves 2 cm and turns 1 degree: points shift by up to 15 px
+    // (those near the left border leave the view: nothing says they move).
+    const float x = t.first.keypoint(k).pt.x;
+    if (x > 20 && x < 170) kept_left += c.keep[k] ? 1 : 0;
+    if (x > 230) dropped_right += c.keep[k] ? 0 : 1;
+  }
+  EXPECT_EQ(kept_left, 0);
+  EXPECT_EQ(dropped_right, 0);
+}
+
+TEST(InitialViewCheck, RejectsWhenEitherFrameIsMostlyMasked) {
+  test::SyntheticScene scene(1500);
+  TwoFrames t = two_frames(scene, {}, 0);
+  cv::Mat1b mask = empty_mask();
+  mask.colRange(0, 384).setTo(255);  // 60 %
+  t.next.set_dynamic_mask(mask);
+  InitialViewCheck c = check_initial_view(t.first, t.next, {});
+  EXPECT_FALSE(c.accepted);
+  EXPECT_NE(c.reason.find("60 %"), std::string::npos) << c.reason;
+  InitialViewCheckOptions loose;
+  loose.max_masked_fraction = 0.7;
+  c = check_initial_view(t.first, t.next, loose);
+  EXPECT_TRUE(c.accepted) << c.reason;
+}
+
+}  // namespace
+}  // namespace stillslam
