@@ -1,7 +1,6 @@
 #include "stillslam/tracking/tracker.h"
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <unordered_set>
 
