@@ -20,7 +20,8 @@ namespace stillslam {
 
 struct TrajectoryRefinementOptions {
   // Off: the trajectory is the tracked poses, and frames keep nothing
-  // (each tracked frame costs about 16 bytes per inlier, ~8 kB at 500).
+  // (each tracked frame costs 32 bytes per inlier, a point pointer and its
+  // keypoint: ~16 kB at 500).
   bool enabled = true;
   // Fewer surviving observations (or inliers after the re-estimate) than
   // this: the frame keeps its tracked pose.
