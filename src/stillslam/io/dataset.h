@@ -20,21 +20,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "stillslam/core/sensor_frame.h"
 #include "stillslam/io/settings.h"
 
 namespace stillslam {
-
-struct SensorFrame {
-  std::size_t index = 0;
-  double timestamp = 0;  // seconds
-  cv::Mat color;  // 8UC3 BGR (for segmentation); for gray datasets a BGR copy of the gray image
-  cv::Mat gray;   // 8UC1, rectified for stereo
-  cv::Mat right;  // 8UC1 rectified right image (stereo), else empty
-  cv::Mat depth;  // CV_32F metres (RGB-D), 0 = invalid; else empty
-  std::string name;  // image file name, for messages
-  bool valid = true;   // false only when skip_bad_frames turned an error into a skip
-  std::string error;   // why the frame is invalid
-};
 
 struct DatasetOptions {
   double max_dt = 0.02;  // TUM rgb/depth association tolerance, seconds

@@ -2,6 +2,7 @@
 #include <sstream>
 #include <string>
 
+#include "stillslam/core/text.h"
 #include "stillslam/io/settings_parts.h"
 
 namespace stillslam {
@@ -16,13 +17,6 @@ std::string known_keys_list() {
   std::string out;
   for (const char* k : kKnownKeys) out += (out.empty() ? "" : ", ") + std::string(kPrefix) + k;
   return out;
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
 }
 
 // Reports errors under the full dotted key, whichever YAML layout was used.

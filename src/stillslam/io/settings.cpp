@@ -5,6 +5,7 @@
 #include <string>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text.h"
 #include "stillslam/io/settings_parts.h"
 #include "stillslam/io/yaml_reader.h"
 
@@ -12,11 +13,6 @@ namespace stillslam {
 namespace {
 
 enum class CameraType { PinHole, KannalaBrandt8, Rectified };
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 CameraType read_camera_type(const YamlReader& yaml) {
   const auto type = yaml.optional_string("Camera.type");
@@ -232,15 +228,6 @@ void read_orb_section(const YamlReader& yaml, OrbOptions& orb) {
 double Settings::baseline() const { return camera.fx > 0 ? bf / camera.fx : 0.0; }
 
 double Settings::close_depth() const { return th_depth * baseline(); }
-
-const char* to_string(SensorType sensor) {
-  switch (sensor) {
-    case SensorType::Monocular: return "monocular";
-    case SensorType::Stereo: return "stereo";
-    case SensorType::Rgbd: return "rgbd";
-  }
-  return "unknown";
-}
 
 Settings load_settings(const std::filesystem::path& yaml_file) {
   const YamlReader yaml(yaml_file);

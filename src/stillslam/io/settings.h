@@ -6,13 +6,12 @@
 #include <filesystem>
 #include <optional>
 
+#include "stillslam/core/sensor_frame.h"
 #include "stillslam/features/orb_options.h"
 #include "stillslam/geometry/camera_calibration.h"
 #include "stillslam/segmentation/segmentation_options.h"
 
 namespace stillslam {
-
-enum class SensorType { Monocular, Stereo, Rgbd };
 
 struct Settings {
   std::filesystem::path file;               // where it was read from
@@ -45,8 +44,5 @@ struct Settings {
 // Reads and validates a settings file; throws stillslam::Error naming the file
 // and the offending key.
 Settings load_settings(const std::filesystem::path& yaml);
-
-// Human-readable name of a sensor type ("monocular", "stereo", "rgbd").
-const char* to_string(SensorType sensor);
 
 }  // namespace stillslam

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text.h"
 
 namespace stillslam {
 namespace {
@@ -23,34 +24,6 @@ struct Line {
   std::size_t number = 0;  // 1-based, for messages
   std::string text;
 };
-
-std::string trim(const std::string& s) {
-  const auto begin = s.find_first_not_of(" \t\r\n");
-  if (begin == std::string::npos) return {};
-  const auto end = s.find_last_not_of(" \t\r\n");
-  return s.substr(begin, end - begin + 1);
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-// Splits on blanks, and also on commas for csv (blanks around commas are padding).
-std::vector<std::string> split(const std::string& text, bool commas) {
-  std::vector<std::string> tokens;
-  std::string current;
-  for (char c : text) {
-    if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || (commas && c == ',')) {
-      if (!current.empty()) tokens.push_back(current);
-      current.clear();
-    } else {
-      current.push_back(c);
-    }
-  }
-  if (!current.empty()) tokens.push_back(current);
-  return tokens;
-}
 
 std::optional<double> parse_finite_number(const std::string& token) {
   double value = 0;
@@ -125,7 +98,7 @@ bool is_comment_or_blank(const std::string& text) {
 }
 
 bool starts_with_number(const std::string& text, bool commas) {
-  const auto tokens = split(trim(text), commas);
+  const auto tokens = split_tokens(trim(text), commas);
   return !tokens.empty() && parse_finite_number(tokens.front()).has_value();
 }
 
@@ -149,7 +122,7 @@ Eigen::Quaterniond make_quaternion(const fs::path& path, const Line& line, doubl
 std::optional<bool> header_says_w_first(const std::string& header) {
   const auto begin = header.find_first_not_of(" \t#%");
   if (begin == std::string::npos) return std::nullopt;
-  const auto tokens = split(lower(header.substr(begin)), true);
+  const auto tokens = split_tokens(lower(header.substr(begin)), true);
   std::optional<std::size_t> w_index, x_index;
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     const std::string& t = tokens[i];
@@ -176,7 +149,7 @@ Trajectory parse_tum(const fs::path& path, const std::vector<Line>& lines) {
       if (trajectory.empty()) w_first = header_says_w_first(line.text).value_or(w_first);
       continue;
     }
-    const auto tokens = split(line.text, false);
+    const auto tokens = split_tokens(line.text, false);
     const auto v = parse_numbers(path, line, tokens, 8, w_first ? "TUM: t x y z qw qx qy qz" : "TUM: t x y z qx qy qz qw");
     StampedPose pose;
     pose.timestamp = parse_stamp(path, line, tokens[0]);
@@ -191,7 +164,7 @@ Trajectory parse_kitti(const fs::path& path, const std::vector<Line>& lines) {
   Trajectory trajectory;
   for (const Line& line : lines) {
     if (is_comment_or_blank(line.text)) continue;
-    const auto tokens = split(line.text, false);
+    const auto tokens = split_tokens(line.text, false);
     if (tokens.size() != 12) {
       fail(path, line.number, "expected 12 numbers (KITTI: row-major 3x4 [R|t]), found " +
                                   std::to_string(tokens.size()));
@@ -230,7 +203,7 @@ Trajectory parse_euroc(const fs::path& path, const std::vector<Line>& lines) {
       if (trajectory.empty()) w_first = header_says_w_first(line.text).value_or(w_first);
       continue;
     }
-    const auto tokens = split(line.text, true);
+    const auto tokens = split_tokens(line.text, true);
     const auto v = parse_numbers(path, line, tokens, 8,
                                  w_first ? "EuRoC csv: timestamp[ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z"
                                          : "csv: timestamp[ns], p_x, p_y, p_z, q_x, q_y, q_z, q_w");
@@ -250,7 +223,7 @@ TrajectoryFormat detect_from_lines(const fs::path& path, const std::vector<Line>
       if (!starts_with_number(line.text, true)) continue;  // csv header without '#'
       return TrajectoryFormat::Euroc;
     }
-    const auto tokens = split(line.text, false);
+    const auto tokens = split_tokens(line.text, false);
     if (tokens.size() == 12) return TrajectoryFormat::Kitti;
     if (tokens.size() >= 8) return TrajectoryFormat::Tum;
     fail(path, line.number,
@@ -308,7 +281,7 @@ Trajectory read_kitti_trajectory(const fs::path& path, const fs::path& times_pat
   std::vector<double> times;
   for (const Line& line : read_lines(times_path)) {
     if (is_comment_or_blank(line.text)) continue;
-    const auto tokens = split(line.text, false);
+    const auto tokens = split_tokens(line.text, false);
     if (tokens.size() != 1) fail(times_path, line.number, "expected one timestamp per line");
     times.push_back(parse_stamp(times_path, line, tokens[0]));
   }

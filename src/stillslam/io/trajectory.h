@@ -25,14 +25,9 @@
 #include <string>
 #include <vector>
 
+#include "stillslam/core/trajectory.h"
+
 namespace stillslam {
-
-struct StampedPose {
-  double timestamp = 0;  // seconds
-  Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
-};
-
-using Trajectory = std::vector<StampedPose>;
 
 enum class TrajectoryFormat { Tum, Kitti, Euroc };
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "stillslam/map/map.h"
+#include "stillslam/mapping/local_mapper_options.h"
 #include "stillslam/mapping/keyframe_culling.h"
 #include "stillslam/mapping/neighbour_fusion.h"
 #include "stillslam/mapping/point_culling.h"
@@ -24,53 +25,6 @@
 #include "stillslam/optimize/bundle_adjustment.h"
 
 namespace stillslam {
-
-struct LocalMapperOptions {
-  bool threaded = true;
-  PointCullingOptions point_culling;
-  PointTriangulationOptions triangulation;
-  FusionOptions fusion;
-  KeyFrameCullingOptions keyframe_culling;
-  BundleAdjustmentOptions bundle_adjustment = default_bundle_adjustment();
-  bool enable_bundle_adjustment = true;
-  bool enable_keyframe_culling = true;
-  // Wired by System (both optional). Called outside the map lock: every
-  // finished keyframe (to loop closing) and the ids of culled keyframes (to
-  // drop them from place recognition).
-  std::function<void(KeyFramePtr)> on_keyframe_processed;
-  std::function<void(std::uint64_t)> on_keyframe_culled;
-
-  static BundleAdjustmentOptions default_bundle_adjustment() {
-    BundleAdjustmentOptions o;
-    o.iterations = 5;  // ORB-SLAM: 5 robust iterations, then 10 without outliers
-    o.outlier_rounds = 1;
-    o.iterations_after_outliers = 10;
-    return o;
-  }
-};
-
-struct LocalMapperStats {
-  int keyframes = 0;
-  int points_created = 0;
-  int points_culled = 0;
-  int keyframes_culled = 0;
-  int bundle_adjustments = 0;
-  int bundle_adjustments_aborted = 0;
-  double bundle_adjustment_ms = 0;  // total
-  double total_ms = 0;              // total processing time
-
-  LocalMapperStats& operator+=(const LocalMapperStats& o) {
-    keyframes += o.keyframes;
-    points_created += o.points_created;
-    points_culled += o.points_culled;
-    keyframes_culled += o.keyframes_culled;
-    bundle_adjustments += o.bundle_adjustments;
-    bundle_adjustments_aborted += o.bundle_adjustments_aborted;
-    bundle_adjustment_ms += o.bundle_adjustment_ms;
-    total_ms += o.total_ms;
-    return *this;
-  }
-};
 
 class LocalMapper {
  public:

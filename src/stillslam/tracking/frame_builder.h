@@ -10,7 +10,7 @@
 
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/features/stereo_matcher.h"
-#include "stillslam/io/dataset.h"
+#include "stillslam/core/sensor_frame.h"
 #include "stillslam/map/frame.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 
