@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "opencv_threads.h"
 #include "stillslam/core/error.h"
 #include "stillslam/system/benchmark.h"
 #include "stillslam/system/report.h"
@@ -23,6 +24,7 @@ struct BenchArgs {
   std::size_t max_frames = 0;
   bool deterministic = false;
   bool raw_trajectory = false;
+  int opencv_threads = 1;
 };
 
 void run_bench(const BenchArgs& args) {
@@ -33,6 +35,8 @@ void run_bench(const BenchArgs& args) {
   }
   if (inputs.empty()) throw Error("bench: give at least one --sequence DIR or a --list FILE");
   if (args.runs < 1) throw Error("bench: --runs must be at least 1");
+  // Once for every run, whichever mode runs first (see opencv_threads.h).
+  set_opencv_threads(args.opencv_threads);
   BenchmarkOptions options;
   options.runs = args.runs;
   options.deterministic = args.deterministic;
@@ -69,6 +73,11 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--config", args->config, "settings YAML for every sequence (default: settings.yaml in each folder)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--opencv-threads", args->opencv_threads,
+                  "OpenCV's thread pool (YOLO and ORB) for every run; 0: OpenCV's default (all cores). Default 1, "
+                  "as Segmentation.threads in `stillslam run`")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--runs", args->runs, "runs per mode (the median run by ATE is reported)")->capture_default_str();
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames of each sequence");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "opencv_threads.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/io/image_files.h"
@@ -119,7 +120,7 @@ void run_segment(const SegmentArgs& args) {
   if (args.mask_threshold) options.mask_threshold = *args.mask_threshold;
   if (args.dilation) options.mask_dilation = *args.dilation;
   if (options.mask_dilation < 0) throw Error("--dilation must be >= 0");
-  options.threads = args.threads;
+  set_opencv_threads(args.threads);
   options.agnostic_nms = options.agnostic_nms || args.agnostic_nms;
   options.masks_for_classes_only = false;
 

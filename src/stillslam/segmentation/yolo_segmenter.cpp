@@ -48,7 +48,6 @@ YoloSegmenter::YoloSegmenter(const SegmentationOptions& options) : options_(opti
                 "' needs a fixed 1x3xHxW image input (H, W multiples of 32); export it with a fixed imgsz");
   input_size_ = cv::Size(static_cast<int>(shape[3]), static_cast<int>(shape[2]));
 
-  if (options_.threads > 0) cv::setNumThreads(options_.threads);  // process-wide, see SegmentationOptions
   try {
     net_ = cv::dnn::readNetFromONNX(path);
   } catch (const cv::Exception& e) {
