@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "opencv_threads.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/eval/evaluate.h"
@@ -91,6 +92,7 @@ std::optional<fs::path> find_groundtruth(const RunArgs& args) {
 
 void run(const RunArgs& args) {
   const Settings settings = load_settings(args.config);
+  set_opencv_threads(settings.segmentation.threads);
   const auto dataset = open_dataset(args.input, settings);
   const fs::path out_dir(args.output);
   std::error_code ec;
@@ -113,29 +115,18 @@ void run(const RunArgs& args) {
   options.stop = &signals.stop();
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
-  const bool tty = isatty(fileno(stderr)) != 0;
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
-  std::size_t done = 0, tracked = 0;
-  Stopwatch clock;
   options.on_frame = [&](const FrameStats& f, const System& system) {
-    ++done;
-    if (f.has_pose) {
-      ++tracked;
-      live.write({f.timestamp, *system.last_T_world_cam()});
-    }
-    if (tty) {
-      std::fprintf(stderr, "\r[%zu/%zu] %.1f frames/s, tracked %zu, %s   ", done, total,
-                   1000.0 * static_cast<double>(done) / std::max(clock.elapsed_ms(), 1.0), tracked, to_string(f.state));
-      std::fflush(stderr);
-    }
+    if (f.has_pose) live.write({f.timestamp, *system.last_T_world_cam()});
   };
+  // A line rewritten in place on a terminal, a plain line every 10 s in a log.
+  options.progress = ProgressOptions{.terminal = isatty(fileno(stderr)) != 0};
   spdlog::info("run: {} frames of {} ({}), segmentation {}, relocalization {}, loop closing {}", total, args.input,
                to_string(dataset->sensor()), options.system.use_segmentation && settings.segmentation.enabled ? "on" : "off",
                options.system.vocabulary_path.empty() ? "off" : "on",
                options.system.vocabulary_path.empty() || !options.system.loop_closing || args.localization ? "off" : "on");
   if (args.localization) spdlog::info("localization only in {}: no keyframes, no mapping", args.load_map);
   const RunResult result = run_dataset(settings, *dataset, options);
-  if (tty) std::fprintf(stderr, "\n");
 
   write_trajectory(out_dir / "trajectory.txt", result.trajectory);
   write_trajectory(out_dir / "keyframes.txt", result.keyframes);

@@ -6,74 +6,23 @@
 namespace stillslam {
 
 LoopCloser::LoopCloser(Map& map, PlaceRecognizer& recognizer, LoopCloserOptions options)
-    : map_(map), recognizer_(recognizer), options_(std::move(options)), detector_(recognizer, options_.detector) {
-  if (options_.threaded) thread_ = std::thread([this] { run(); });
-}
+    : map_(&map),
+      recognizer_(recognizer),
+      options_(std::move(options)),
+      detector_(std::in_place, recognizer, options_.detector),
+      worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous,
+              [this](KeyFramePtr& kf) { process(kf); }) {}
 
 LoopCloser::~LoopCloser() { stop(); }
 
-void LoopCloser::submit(KeyFramePtr keyframe) {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_back(std::move(keyframe));
-  }
-  queue_changed_.notify_all();
-}
-
-void LoopCloser::process_pending() {
-  if (options_.threaded) return;
-  for (;;) {
-    KeyFramePtr kf;
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      if (queue_.empty()) return;
-      kf = std::move(queue_.front());
-      queue_.pop_front();
-    }
-    process(kf);
-  }
-}
-
-void LoopCloser::run() {
-  for (;;) {
-    KeyFramePtr kf;
-    {
-      std::unique_lock<std::mutex> lock(queue_mutex_);
-      queue_changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping and drained
-      kf = std::move(queue_.front());
-      queue_.pop_front();
-      busy_ = true;
-    }
-    process(kf);
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-  }
-}
-
 void LoopCloser::flush() {
-  if (options_.threaded) {
-    std::unique_lock<std::mutex> lock(queue_mutex_);
-    queue_changed_.wait(lock, [&] { return queue_.empty() && !busy_; });
-  } else {
-    process_pending();
-  }
+  worker_.wait_idle();
   std::lock_guard<std::mutex> lock(gba_mutex_);
   if (gba_thread_.joinable()) gba_thread_.join();
 }
 
 void LoopCloser::stop() {
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    if (stopping_) return;
-    stopping_ = true;
-  }
-  queue_changed_.notify_all();
-  if (thread_.joinable()) thread_.join();
-  if (!options_.threaded) process_pending();
+  worker_.stop();
   if (options_.finish_global_bundle_adjustment_on_stop) {
     std::lock_guard<std::mutex> lock(gba_mutex_);
     if (gba_thread_.joinable()) gba_thread_.join();
@@ -82,14 +31,21 @@ void LoopCloser::stop() {
   }
 }
 
+void LoopCloser::switch_map(Map& map) {
+  flush();
+  map_ = &map;
+  detector_.emplace(recognizer_, options_.detector);
+  loop_edges_.clear();
+}
+
 void LoopCloser::process(const KeyFramePtr& keyframe) {
   std::optional<ClosedLoop> closed;
   {
-    std::unique_lock<std::mutex> map_lock(map_.update_mutex());
+    std::unique_lock<std::mutex> map_lock(map_->update_mutex());
     if (keyframe->is_bad()) return;
     Stopwatch detection_time;
     std::optional<LoopDetection> detection;
-    if (options_.detect_loops) detection = detector_.detect(map_, *keyframe);
+    if (options_.detect_loops) detection = detector_->detect(*map_, *keyframe);
     recognizer_.add(*keyframe);
     const double detection_ms = detection_time.elapsed_ms();
     double correction_ms = 0;
@@ -103,8 +59,8 @@ void LoopCloser::process(const KeyFramePtr& keyframe) {
       if (!detection->query->is_bad() && !detection->loop->is_bad()) {
         Stopwatch correction_time;
         closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
-                            correct_loop(map_, *detection, loop_edges_, options_.correction)};
-        detector_.loop_closed(keyframe->id());
+                            correct_loop(*map_, *detection, loop_edges_, options_.correction)};
+        detector_->loop_closed(keyframe->id());
         correction_ms = correction_time.elapsed_ms();
       }
       map_lock.unlock();
@@ -145,8 +101,8 @@ void LoopCloser::global_bundle_adjustment() {
   Stopwatch time;
   GlobalBundleAdjustmentProblem problem;
   {
-    std::lock_guard<std::mutex> lock(map_.update_mutex());
-    problem = snapshot_global_problem(map_);
+    std::lock_guard<std::mutex> lock(map_->update_mutex());
+    problem = snapshot_global_problem(*map_);
   }
   BundleAdjustmentOptions options = options_.global_bundle_adjustment;
   options.abort = &gba_abort_;
@@ -155,8 +111,8 @@ void LoopCloser::global_bundle_adjustment() {
   if (!aborted) {
     if (options_.pause_local_mapping) options_.pause_local_mapping();
     {
-      std::lock_guard<std::mutex> lock(map_.update_mutex());
-      apply_global_result(map_, problem, result);
+      std::lock_guard<std::mutex> lock(map_->update_mutex());
+      apply_global_result(*map_, problem, result);
     }
     if (options_.resume_local_mapping) options_.resume_local_mapping();
   }

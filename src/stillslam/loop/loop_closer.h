@@ -4,24 +4,23 @@
 // keyframe for place recognition, and refines the whole map with a global
 // bundle adjustment in a background thread that a newer loop aborts.
 //
-// Threaded mode: a worker thread consumes the queue. Synchronous mode
-// (deterministic runs and tests): submit() only queues; the owner calls
-// process_pending(), which also runs the global BA inline.
+// A pipeline stage (core/worker.h): threaded, its worker thread consumes the
+// queue; synchronous (deterministic runs and tests), submit() only queues and
+// the owner calls process_pending(), which also runs the global BA inline.
+// It works on one map at a time; switch_map() moves it to another.
 #include <atomic>
-#include <condition_variable>
-#include <deque>
-#include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "stillslam/core/worker.h"
 #include "stillslam/loop/loop_closer_options.h"
 #include "stillslam/loop/loop_correction.h"
 #include "stillslam/loop/loop_detector.h"
 #include "stillslam/loop/place_recognizer.h"
 #include "stillslam/map/map.h"
-#include "stillslam/optimize/bundle_adjustment.h"
 
 namespace stillslam {
 
@@ -39,37 +38,33 @@ class LoopCloser {
   LoopCloser& operator=(const LoopCloser&) = delete;
 
   // Called by local mapping when it has finished a keyframe.
-  void submit(KeyFramePtr keyframe);
+  void submit(KeyFramePtr keyframe) { worker_.submit(std::move(keyframe)); }
   // Synchronous mode: processes every queued keyframe (no-op when threaded).
-  void process_pending();
+  void process_pending() { worker_.run_pending(); }
   // Waits until the queue is empty and no global BA runs.
   void flush();
   // Processes what is queued, lets a running global BA finish (or aborts it,
-  // see finish_global_bundle_adjustment_on_stop), joins.
+  // see finish_global_bundle_adjustment_on_stop), joins. Idempotent.
   void stop();
+  // Works on `map` from now on: flushes, then forgets the loop state of the
+  // old map (consistency groups, loop edges).
+  void switch_map(Map& map);
 
   bool global_bundle_adjustment_running() const { return gba_running_.load(); }
   LoopCloserStats stats() const;
   std::vector<ClosedLoop> loops() const;
 
  private:
-  void run();
   void process(const KeyFramePtr& keyframe);
   void start_global_bundle_adjustment();
   void stop_global_bundle_adjustment();
   void global_bundle_adjustment();
 
-  Map& map_;
+  Map* map_;  // changed only by switch_map(), while nothing runs
   PlaceRecognizer& recognizer_;
   LoopCloserOptions options_;
-  LoopDetector detector_;
+  std::optional<LoopDetector> detector_;  // replaced by switch_map()
   LoopEdges loop_edges_;
-
-  mutable std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<KeyFramePtr> queue_;
-  bool busy_ = false;
-  bool stopping_ = false;
 
   mutable std::mutex stats_mutex_;
   LoopCloserStats stats_;
@@ -79,7 +74,7 @@ class LoopCloser {
   std::atomic<bool> gba_abort_{false};
   std::atomic<bool> gba_running_{false};
   std::thread gba_thread_;
-  std::thread thread_;  // last: starts after the members above exist
+  Worker<KeyFramePtr> worker_;  // last: its thread starts after the members above exist
 };
 
 }  // namespace stillslam

@@ -12,7 +12,7 @@ SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter, std
       dynamic_class_ids_(std::move(dynamic_class_ids)),
       dilation_px_(dilation_px),
       hold_(hold),
-      thread_([this] { run(); }) {
+      worker_(WorkerMode::Threaded, [this](Job& job) { run(job); }) {
   if (!segmenter_) {
     stop();
     throw Error("SegmentationWorker needs a segmenter");
@@ -22,49 +22,28 @@ SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter, std
 SegmentationWorker::~SegmentationWorker() { stop(); }
 
 std::future<SegmentationResult> SegmentationWorker::submit(cv::Mat bgr) {
-  Job job{std::move(bgr), {}};
-  auto future = job.promise.get_future();
-  {
-    std::lock_guard lock(mutex_);
-    if (stopping_) {
-      job.promise.set_exception(std::make_exception_ptr(Error("segmentation worker is stopped")));
-      return future;
-    }
-    queue_.push_back(std::move(job));
+  std::promise<SegmentationResult> promise;
+  auto future = promise.get_future();
+  if (stopped_) {
+    promise.set_exception(std::make_exception_ptr(Error("segmentation worker is stopped")));
+    return future;
   }
-  wake_.notify_one();
+  worker_.submit(Job{std::move(bgr), std::move(promise)});
   return future;
 }
 
 void SegmentationWorker::stop() {
-  {
-    std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
-  // Whatever the thread did not start.
-  std::lock_guard lock(mutex_);
-  for (auto& job : queue_)
+  stopped_ = true;
+  for (Job& job : worker_.cancel()) {
     job.promise.set_exception(std::make_exception_ptr(Error("segmentation worker stopped before this frame")));
-  queue_.clear();
+  }
 }
 
-void SegmentationWorker::run() {
-  for (;;) {
-    Job job;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (stopping_) return;
-      job = std::move(queue_.front());
-      queue_.pop_front();
-    }
-    try {
-      job.promise.set_value(process(job.image));
-    } catch (...) {
-      job.promise.set_exception(std::current_exception());
-    }
+void SegmentationWorker::run(Job& job) {
+  try {
+    job.promise.set_value(process(job.image));
+  } catch (...) {
+    job.promise.set_exception(std::current_exception());
   }
 }
 

@@ -1,14 +1,12 @@
 #pragma once
 #include <opencv2/core.hpp>
 
-#include <condition_variable>
-#include <deque>
+#include <atomic>
 #include <future>
 #include <memory>
-#include <mutex>
-#include <thread>
 #include <vector>
 
+#include "stillslam/core/worker.h"
 #include "stillslam/segmentation/detection.h"
 #include "stillslam/segmentation/mask_hold.h"
 #include "stillslam/segmentation/segmenter.h"
@@ -25,10 +23,11 @@ struct SegmentationResult {
   double time_ms = 0;      // segment() + mask building, on the worker thread
 };
 
-// Runs a Segmenter on its own thread so that frame k is segmented while the
-// caller extracts ORB features of frame k: submit() returns at once and the
-// future delivers the result (or the Error the segmenter threw). Frames are
-// processed in submission order, which MaskHold relies on.
+// Runs a Segmenter on its own thread (a core/worker.h stage): submit() returns
+// at once and the future delivers the result (or the Error the segmenter
+// threw). Frames are processed in submission order, which MaskHold relies on.
+// The caller can do other work meanwhile (stereo: the right image's ORB); the
+// left image's extraction needs the mask, so it waits for the future.
 class SegmentationWorker {
  public:
   SegmentationWorker(std::unique_ptr<Segmenter> segmenter, std::vector<int> dynamic_class_ids, int dilation_px,
@@ -49,18 +48,15 @@ class SegmentationWorker {
     cv::Mat image;
     std::promise<SegmentationResult> promise;
   };
-  void run();
+  void run(Job& job);
   SegmentationResult process(const cv::Mat& image);
 
   std::unique_ptr<Segmenter> segmenter_;
   std::vector<int> dynamic_class_ids_;
   int dilation_px_;
   MaskHold hold_;  // used on the worker thread only
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<Job> queue_;
-  bool stopping_ = false;
-  std::thread thread_;  // last: starts after the members above exist
+  std::atomic<bool> stopped_{false};
+  Worker<Job> worker_;  // last: its thread starts after the members above exist
 };
 
 }  // namespace stillslam

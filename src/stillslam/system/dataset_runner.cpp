@@ -17,6 +17,13 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
   std::size_t n = dataset.size();
   if (options.max_frames) n = std::min(n, first + *options.max_frames);
 
+  std::optional<ProgressReporter> progress;
+  if (options.progress) {
+    ProgressOptions p = *options.progress;
+    p.total_frames = n - std::min(first, n);
+    progress.emplace(system.publisher(), p);
+  }
+
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
   if (n > first) next = std::async(std::launch::async, load, first);
@@ -52,6 +59,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     } catch (...) {
     }
   }
+  if (progress) progress->stop();
   system.shutdown();
   if (!options.save_map.empty()) {
     try {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stillslam/io/dataset.h"
+#include "stillslam/system/progress.h"
 #include "stillslam/system/system.h"
 
 namespace stillslam {
@@ -27,6 +28,8 @@ struct RunOptions {
   bool realtime = false;
   const std::atomic<bool>* stop = nullptr;  // checked before each frame
   std::function<void(const FrameStats&, const System&)> on_frame;
+  // A progress line on stderr while the run lasts (total_frames is filled in).
+  std::optional<ProgressOptions> progress;
 };
 
 struct RunResult {

@@ -24,6 +24,7 @@ struct FrameStats {
   double tracking_cpu_ms = 0;  // CPU time of the calling thread in the tracker
   double total_cpu_ms = 0;     // CPU time of the calling thread for the whole frame
                                // (without the segmentation worker / right-image thread)
+  double publish_ms = 0;       // snapshots for the publish layer, after total_ms
   bool has_pose = false;
   std::uint64_t map_id = 0;  // the active map after tracking (atlas)
   bool new_map = false;      // a new map starts with the next frame

@@ -9,6 +9,7 @@
 #include <unordered_set>
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
 #include "stillslam/tracking/thread_cpu_stopwatch.h"
@@ -69,23 +70,12 @@ std::filesystem::path resolve_vocabulary_option(const std::string& option) {
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
     : options_(std::move(options)), sensor_(sensor) {
+  options_.publish.check();
   setup_ = make_camera_setup(settings, sensor, rectified);
   if (options_.localization_only && options_.load_map.empty()) {
     throw Error("localization-only mode needs a map to localize in: pass --load-map FILE (written by "
                 "`stillslam run --save-map FILE`)");
   }
-  if (options_.use_segmentation && settings.segmentation.enabled) {
-    std::unique_ptr<Segmenter> segmenter = options_.segmenter_factory
-                                               ? options_.segmenter_factory()
-                                               : std::make_unique<YoloSegmenter>(settings.segmentation);
-    segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
-                                                         resolve_class_ids(settings.segmentation.classes),
-                                                         settings.segmentation.mask_dilation,
-                                                         MaskHoldOptions{.frames = settings.segmentation.hold_frames});
-  }
-  StereoMatchOptions stereo_matching;
-  stereo_matching.flow_for_unmatched = settings.stereo_flow_matching;
-  builder_ = std::make_unique<FrameBuilder>(setup_, sensor, settings.orb, segmentation_.get(), stereo_matching);
   atlas_ = std::make_unique<Atlas>();
   if (!options_.vocabulary_path.empty()) {
     if (!std::filesystem::is_regular_file(options_.vocabulary_path)) {
@@ -105,57 +95,86 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
                                                                         : 0;
   if (options_.localization_only) new_map_after_lost_frames_ = 0;
   if (!options_.load_map.empty()) load_maps(options_.load_map);
+  build_pipeline(settings);
+  if (!options_.load_map.empty()) tracker_->localize_in(atlas_->active_map());
+}
 
-  mapper_options_ = options_.mapper;
-  mapper_options_.threaded = !options_.deterministic;
-  if (options_.deterministic) mapper_options_.bundle_adjustment.num_threads = 1;
-  if (recognizer_) {
-    // The loop closer of the active map exists before the mapper hands it
-    // keyframes; it reaches the mapper (pause/resume) only through mapper_.
-    loop_options_ = options_.loop_closer;
-    loop_options_.threaded = !options_.deterministic;
-    loop_options_.detect_loops = loop_options_.detect_loops && options_.loop_closing;
-    if (options_.deterministic) loop_options_.global_bundle_adjustment.num_threads = 1;
-    loop_options_.pause_local_mapping = [this] { mapper_->pause(); };
-    loop_options_.resume_local_mapping = [this] { mapper_->resume(); };
-    PlaceRecognizer* recognizer = recognizer_.get();
-    // loop_closer_ and mapper_ are replaced only while the mapper is stopped.
-    mapper_options_.on_keyframe_processed = [this](KeyFramePtr kf) {
-      if (merge_detector_) {
-        std::lock_guard<std::mutex> lock(finished_mutex_);
-        finished_keyframes_.push_back(kf);
-      }
-      loop_closer_->submit(std::move(kf));
-    };
-    mapper_options_.on_keyframe_culled = [recognizer](std::uint64_t id) { recognizer->erase(id); };
+void System::build_pipeline(const Settings& settings) {
+  const WorkerMode mode = options_.deterministic ? WorkerMode::Synchronous : WorkerMode::Threaded;
+
+  // 1. Segmentation (own thread): the colour image in, the dynamic mask out.
+  if (options_.use_segmentation && settings.segmentation.enabled) {
+    std::unique_ptr<Segmenter> segmenter = options_.segmenter_factory
+                                               ? options_.segmenter_factory()
+                                               : std::make_unique<YoloSegmenter>(settings.segmentation);
+    segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
+                                                         resolve_class_ids(settings.segmentation.classes),
+                                                         settings.segmentation.mask_dilation,
+                                                         MaskHoldOptions{.frames = settings.segmentation.hold_frames});
   }
-  start_map_threads(atlas_->active_map());
 
-  // The tracking thread is the only one that replaces mapper_.
-  LocalMappingLink link;
-  link.insert_keyframe = [this](KeyFramePtr kf) { mapper_->insert_keyframe(std::move(kf)); };
-  link.accepts_keyframes = [this] { return mapper_->accepts_keyframes(); };
-  link.queued_keyframes = [this] { return mapper_->queued_keyframes(); };
-  link.interrupt_bundle_adjustment = [this] { mapper_->interrupt_bundle_adjustment(); };
+  // 2. Frame building (tracking thread): ORB outside the mask, stereo / depth association.
+  StereoMatchOptions stereo_matching;
+  stereo_matching.flow_for_unmatched = settings.stereo_flow_matching;
+  builder_ = std::make_unique<FrameBuilder>(setup_, sensor_, settings.orb, segmentation_.get(), stereo_matching);
+
+  Map& map = atlas_->active_map();
+  // 5. Loop closing (own thread, with a vocabulary): keyframes from local
+  // mapping in; pauses local mapping while it corrects a loop.
   if (recognizer_) {
-    link.relocalize = [this](Frame& frame) {  // called with the active map's lock held by the tracker
-      const Map& map = tracker_->map();
-      const BowDescription d = recognizer_->describe(frame.descriptors());
+    LoopCloserOptions loop = options_.loop_closer;
+    loop.threaded = mode == WorkerMode::Threaded;
+    loop.detect_loops = loop.detect_loops && options_.loop_closing;
+    if (options_.deterministic) loop.global_bundle_adjustment.num_threads = 1;
+    loop.pause_local_mapping = [&mapper = mapper_] { mapper->pause(); };
+    loop.resume_local_mapping = [&mapper = mapper_] { mapper->resume(); };
+    loop_closer_ = std::make_unique<LoopCloser>(map, *recognizer_, std::move(loop));
+  }
+
+  // 4. Local mapping (own thread): keyframes from tracking in; each finished
+  // keyframe goes on to loop closing and to merge detection.
+  LocalMapperOptions mapping = options_.mapper;
+  mapping.threaded = mode == WorkerMode::Threaded;
+  if (options_.deterministic) mapping.bundle_adjustment.num_threads = 1;
+  if (recognizer_) {
+    LoopCloser* loop_closer = loop_closer_.get();
+    WorkQueue<KeyFramePtr>* finished = merge_detector_ ? &finished_keyframes_ : nullptr;
+    mapping.on_keyframe_processed = [loop_closer, finished](KeyFramePtr kf) {
+      if (finished) finished->push(kf);
+      loop_closer->submit(std::move(kf));
+    };
+    PlaceRecognizer* recognizer = recognizer_.get();
+    mapping.on_keyframe_culled = [recognizer](std::uint64_t id) { recognizer->erase(id); };
+  }
+  mapper_ = std::make_unique<LocalMapper>(map, std::move(mapping));
+
+  // 3. Tracking (the caller's thread): frames in; keyframes out to local
+  // mapping; relocalization in the active map when lost.
+  LocalMapper* mapper = mapper_.get();
+  LocalMappingLink link;
+  link.insert_keyframe = [mapper](KeyFramePtr kf) { mapper->insert_keyframe(std::move(kf)); };
+  link.accepts_keyframes = [mapper] { return mapper->accepts_keyframes(); };
+  link.queued_keyframes = [mapper] { return mapper->queued_keyframes(); };
+  link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
+  if (recognizer_) {
+    // Called by the tracker with the active map's lock held.
+    link.relocalize = [recognizer = recognizer_.get(), &relocalizer = relocalizer_, &tracker = tracker_](Frame& frame) {
+      const Map& active = tracker->map();
+      const BowDescription d = recognizer->describe(frame.descriptors());
       std::vector<RelocalizationCandidate> candidates;
       // Keyframes of other maps are not candidates: relocalization stays in the active map.
-      for (const PlaceCandidate& c : recognizer_->relocalization_candidates(d.bow)) {
-        KeyFramePtr kf = map.keyframe(c.id);
-        auto words = recognizer_->description(c.id);
+      for (const PlaceCandidate& c : recognizer->relocalization_candidates(d.bow)) {
+        KeyFramePtr kf = active.keyframe(c.id);
+        auto words = recognizer->description(c.id);
         if (kf && !kf->is_bad() && words) candidates.push_back({kf, words->features});
       }
-      return relocalizer_.relocalize(frame, d.features, candidates).success;
+      return relocalizer.relocalize(frame, d.features, candidates).success;
     };
   }
-  TrackerOptions tracker_options = options_.tracker;
-  if (settings.fps > 0) tracker_options.max_frames_between_keyframes = static_cast<int>(settings.fps);
-  tracker_options.localization_only = options_.localization_only;
-  tracker_ = std::make_unique<Tracker>(atlas_->active_map(), tracker_options, std::move(link));
-  if (!options_.load_map.empty()) tracker_->localize_in(atlas_->active_map());
+  TrackerOptions tracking = options_.tracker;
+  if (settings.fps > 0) tracking.max_frames_between_keyframes = static_cast<int>(settings.fps);
+  tracking.localization_only = options_.localization_only;
+  tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 
 MapFileContext System::map_file_context() const {
@@ -210,53 +229,38 @@ MapFileStats System::save_map(const std::filesystem::path& path) {
 
 System::~System() { shutdown(); }
 
-void System::start_map_threads(Map& map) {
-  if (recognizer_) loop_closer_ = std::make_unique<LoopCloser>(map, *recognizer_, loop_options_);
-  mapper_ = std::make_unique<LocalMapper>(map, mapper_options_);
-}
-
-void System::stop_map_threads() {
-  // Local mapping first: the keyframes it still finishes reach loop closing,
-  // which indexes them before it stops (a correction in progress pausing or
-  // resuming the stopped mapper is harmless).
-  if (mapper_) mapper_->stop();
-  if (loop_closer_) loop_closer_->stop();
-}
-
-void System::retire_map_threads() {
-  stop_map_threads();
-  stopped_mapper_stats_ += mapper_->stats();
-  if (loop_closer_) stopped_loop_stats_ += loop_closer_->stats();
+void System::move_stages_to_active_map() {
+  // Local mapping first: the keyframes it still finishes reach loop closing.
+  mapper_->flush();
+  if (loop_closer_) loop_closer_->flush();
+  Map& map = atlas_->active_map();
+  mapper_->switch_map(map);
+  if (loop_closer_) loop_closer_->switch_map(map);
 }
 
 void System::shutdown() {
-  stop_map_threads();
+  // Local mapping first: the keyframes it still finishes reach loop closing,
+  // which indexes them before it stops.
+  mapper_->stop();
+  if (loop_closer_) loop_closer_->stop();
   if (segmentation_) segmentation_->stop();
 }
 
 void System::start_new_map() {
-  retire_map_threads();
   const std::uint64_t old_id = atlas_->active_map_id();
   Map& map = atlas_->create_map();
   spdlog::info("atlas: tracking lost for {} frames, map {} kept, new map {} starts", lost_frames_, old_id,
                map.id());
-  {
-    std::lock_guard<std::mutex> lock(finished_mutex_);
-    finished_keyframes_.clear();
-  }
+  move_stages_to_active_map();
+  finished_keyframes_.take_all();
   if (merge_detector_) merge_detector_->reset();
   tracker_->start_new_map(map);
-  start_map_threads(map);
   lost_frames_ = 0;
   ++new_maps_started_;
 }
 
 void System::detect_and_merge() {
-  std::vector<KeyFramePtr> finished;
-  {
-    std::lock_guard<std::mutex> lock(finished_mutex_);
-    finished.swap(finished_keyframes_);
-  }
+  const std::deque<KeyFramePtr> finished = finished_keyframes_.take_all();
   if (!merge_detector_ || atlas_->num_maps() < 2) return;
   Map& active = atlas_->active_map();
   for (const KeyFramePtr& kf : finished) {
@@ -275,7 +279,9 @@ void System::detect_and_merge() {
 
 bool System::merge_into(Map& target, const LoopDetection& detection) {
   Map& source = atlas_->active_map();
-  retire_map_threads();
+  // Nothing may change either map while they are merged.
+  mapper_->flush();
+  if (loop_closer_) loop_closer_->flush();
   std::optional<MapMergeStats> merged;
   {
     std::scoped_lock lock(source.update_mutex(), target.update_mutex());
@@ -294,11 +300,11 @@ bool System::merge_into(Map& target, const LoopDetection& detection) {
     tracker_->switch_map(target);
     merges_.push_back(*merged);
     merge_detector_->reset();
-    std::lock_guard<std::mutex> lock(finished_mutex_);
-    finished_keyframes_.clear();
+    finished_keyframes_.take_all();
   }
-  // Both after a merge and after a failed re-check: continue in the active map.
-  start_map_threads(atlas_->active_map());
+  // After a merge and after a failed re-check alike, the stages start afresh
+  // on the active map.
+  move_stages_to_active_map();
   return merged.has_value();
 }
 
@@ -350,7 +356,63 @@ FrameStats System::process(const SensorFrame& input) {
   }
   stats.total_ms = total.elapsed_ms();
   stats.total_cpu_ms = total_cpu.elapsed_ms();
+  Stopwatch publishing;
+  publish(input, frame, stats);
+  stats.publish_ms = publishing.elapsed_ms();
   return stats;
+}
+
+void System::publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats) {
+  auto f = std::make_shared<FrameSnapshot>();
+  f->index = stats.index;
+  f->frame_id = frame.id();
+  f->timestamp = stats.timestamp;
+  f->state = to_string(stats.state);
+  f->reason = stats.reason;
+  f->has_pose = stats.has_pose;
+  if (last_T_world_cam_) f->T_world_cam = *last_T_world_cam_;
+  f->map_id = atlas_->active_map_id();
+  f->keyframe = stats.keyframe;
+  f->image = input.color.empty() ? input.gray : input.color;
+  f->dynamic_mask = frame.dynamic_mask();
+  f->keypoints.reserve(frame.size());
+  f->tracked.reserve(frame.size());
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    f->keypoints.push_back(frame.keypoints_raw()[i].pt);
+    f->tracked.push_back(frame.map_point(i) != nullptr && !frame.is_outlier(i));
+  }
+  f->keypoints_with_depth = stats.build.keypoints_with_depth;
+  f->detections = stats.build.detections;
+  f->mask_coverage = stats.build.mask_coverage;
+  f->matches = stats.matches;
+  f->inliers = stats.inliers;
+  f->total_ms = stats.total_ms;
+  publisher_.publish_frame(std::move(f));
+
+  const bool map_changed = stats.keyframe || stats.new_map || stats.merged;
+  ++frames_since_map_snapshot_;
+  const int every = options_.publish.map_every_frames;
+  if (!map_changed && (every == 0 || frames_since_map_snapshot_ < every)) return;
+  frames_since_map_snapshot_ = 0;
+  auto atlas = std::make_shared<AtlasSnapshot>();
+  atlas->frame_id = frame.id();
+  atlas->active_map_id = atlas_->active_map_id();
+  atlas->loops_closed = loop_closer_ ? loop_closer_->stats().loops_closed : 0;
+  atlas->merges = static_cast<int>(merges_.size());
+  atlas->new_maps = new_maps_started_;
+  for (Map* map : atlas_->maps()) {
+    std::lock_guard<std::mutex> lock(map->update_mutex());
+    MapSnapshot m = snapshot_map(*map, options_.publish.min_covisibility_weight);
+    m.active = map->id() == atlas->active_map_id;
+    std::unordered_set<const KeyFrame*> members;
+    for (const KeyFramePtr& kf : map->all_keyframes()) members.insert(kf.get());
+    for (const FrameRecord& r : records_) {
+      if (!members.count(r.reference.get())) continue;
+      m.trajectory.push_back((r.T_cam_ref * r.reference->T_cam_world_resolved()).inverse().translation());
+    }
+    atlas->maps.push_back(std::move(m));
+  }
+  publisher_.publish_atlas(std::move(atlas));
 }
 
 std::vector<MapPose> System::trajectory_with_maps() const {
@@ -401,16 +463,9 @@ Trajectory System::keyframe_trajectory() const {
   return out;
 }
 
-LocalMapperStats System::mapper_stats() const {
-  LocalMapperStats total = stopped_mapper_stats_;
-  return total += mapper_->stats();
-}
+LocalMapperStats System::mapper_stats() const { return mapper_->stats(); }
 
-LoopCloserStats System::loop_closer_stats() const {
-  LoopCloserStats total = stopped_loop_stats_;
-  if (loop_closer_) total += loop_closer_->stats();
-  return total;
-}
+LoopCloserStats System::loop_closer_stats() const { return loop_closer_ ? loop_closer_->stats() : LoopCloserStats{}; }
 
 std::size_t System::num_keyframes() const {
   std::size_t n = 0;

@@ -1,22 +1,25 @@
 #pragma once
-// The SLAM system facade: builds the pipeline from Settings (camera setup,
-// segmentation worker, frame builder, atlas of maps, tracker, local mapper
-// thread and, with a vocabulary, place recognition, relocalization, loop
-// closing and map merging), processes frames one at a time, and exports
-// trajectories. Poses of frames are stored relative to their reference
-// keyframe and resolved on export, so map corrections after a frame was
-// tracked still apply to it.
+// The SLAM system facade. build_pipeline() (system.cpp) builds the stages
+// from the settings and shows the whole data flow in one place:
+//   segmentation -> frame building -> tracking -> [queue] local mapping
+//   -> [queue] loop closing, plus relocalization and map merging with a
+// vocabulary. process() runs one frame through it and, at the end, posts
+// snapshots of the frame and the map to the publish layer
+// (publish/publisher.h), which readers (progress, viewers) take without
+// touching the map lock. Poses of frames are stored relative to their
+// reference keyframe and resolved on export, so map corrections after a
+// frame was tracked still apply to it.
 //
 // Atlas: when tracking stays lost for new_map_after_lost_frames frames
 // (relocalization keeps failing), a new map starts from the next frame with
 // enough depth; the old map is kept unchanged. Local mapping and loop closing
-// work on the active map only: they are stopped and started again on the new
-// (or, after a merge, the merged) map, so no thread ever touches an inactive
-// map. With a vocabulary, every keyframe local mapping finishes is also
-// looked for in the other maps (loop/merge_detector.h); a recognized place
-// merges the active map into the old one (loop/map_merger.h) and tracking
-// continues in the merged map. Frames keep the map of their reference
-// keyframe: until a merge their poses are in their own map's frame.
+// work on the active map only: they are flushed and moved to the new (or,
+// after a merge, the merged) map, so no thread ever touches an inactive map.
+// With a vocabulary, every keyframe local mapping finishes is also looked for
+// in the other maps (loop/merge_detector.h); a recognized place merges the
+// active map into the old one (loop/map_merger.h) and tracking continues in
+// the merged map. Frames keep the map of their reference keyframe: until a
+// merge their poses are in their own map's frame.
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <functional>
@@ -25,6 +28,7 @@
 #include <optional>
 #include <vector>
 
+#include "stillslam/core/work_queue.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/settings.h"
 #include "stillslam/io/trajectory.h"
@@ -36,6 +40,7 @@
 #include "stillslam/map/map.h"
 #include "stillslam/map/map_file.h"
 #include "stillslam/mapping/local_mapper.h"
+#include "stillslam/publish/publisher.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/system/frame_stats.h"
 #include "stillslam/system/trajectory_refinement.h"
@@ -84,6 +89,8 @@ struct SystemOptions {
   // Re-estimate every tracked frame against the final map when the
   // trajectory is read (system/trajectory_refinement.h).
   TrajectoryRefinementOptions trajectory_refinement;
+  // What is published after each frame, and how often the map is.
+  PublishOptions publish;
 };
 
 // A frame's pose with the id of the map it is expressed in.
@@ -127,7 +134,7 @@ class System {
   Trajectory trajectory() const;
   std::vector<MapPose> trajectory_with_maps() const;
   Trajectory keyframe_trajectory() const;  // active keyframes of all maps
-  // Totals over every map's local mapper / loop closer.
+  // Local mapping / loop closing totals over every map.
   LocalMapperStats mapper_stats() const;
   // Zero when there is no vocabulary.
   LoopCloserStats loop_closer_stats() const;
@@ -151,6 +158,8 @@ class System {
   // can't be written.
   MapFileStats save_map(const std::filesystem::path& path);
   bool segmentation_enabled() const { return segmentation_ != nullptr; }
+  // The snapshots posted after each frame, for readers on other threads.
+  const Publisher& publisher() const { return publisher_; }
 
  private:
   struct FrameRecord {
@@ -161,14 +170,12 @@ class System {
     FrameObservations observations;  // empty without trajectory refinement
   };
 
-  // Local mapping and loop closing for the active map.
-  void start_map_threads(Map& map);
-  // Stops them (local mapping first, so every keyframe it finishes still
-  // reaches loop closing and the place-recognition index).
-  void stop_map_threads();
-  // Stops the active map's threads and keeps their statistics, before the
-  // threads are replaced for another map.
-  void retire_map_threads();
+  // Creates the stages and connects them (the data flow in one place).
+  void build_pipeline(const Settings& settings);
+  // Local mapping, then loop closing, finish what they have (so every
+  // keyframe local mapping finishes still reaches loop closing), then both
+  // move to the active map.
+  void move_stages_to_active_map();
   void start_new_map();
   // SystemOptions::load_map: the file's maps into the (empty) atlas.
   void load_maps(const std::filesystem::path& path);
@@ -176,6 +183,8 @@ class System {
   // on a recognized place.
   void detect_and_merge();
   bool merge_into(Map& target, const LoopDetection& detection);
+  // Posts the frame snapshot and, when due, the atlas snapshot.
+  void publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats);
 
   SystemOptions options_;
   SensorType sensor_;
@@ -187,15 +196,17 @@ class System {
   std::unique_ptr<PlaceRecognizer> recognizer_;
   Relocalizer relocalizer_;
   std::unique_ptr<MergeDetector> merge_detector_;
-  LocalMapperOptions mapper_options_;
-  LoopCloserOptions loop_options_;
-  // Declared after the mapper so that it is destroyed first: it pauses the
-  // mapper during corrections.
+  // The stages live as long as the system (moved between maps, never
+  // replaced), so the connections between them never dangle. The mapper is
+  // declared first so it is destroyed last: loop closing pauses it.
   std::unique_ptr<LocalMapper> mapper_;
   std::unique_ptr<LoopCloser> loop_closer_;
-  LocalMapperStats stopped_mapper_stats_;
-  LoopCloserStats stopped_loop_stats_;
   std::unique_ptr<Tracker> tracker_;
+  // Keyframes local mapping has finished, for merge detection: filled by the
+  // local-mapping stage, drained by process().
+  WorkQueue<KeyFramePtr> finished_keyframes_;
+  Publisher publisher_;
+  int frames_since_map_snapshot_ = 0;
   std::vector<FrameRecord> records_;
   std::uint64_t next_frame_id_ = 0;
   std::optional<Eigen::Isometry3d> last_T_world_cam_;
@@ -203,10 +214,6 @@ class System {
   int lost_frames_ = 0;
   int new_maps_started_ = 0;
   std::vector<MapMergeStats> merges_;
-  // Keyframes local mapping has finished, for merge detection (filled by the
-  // mapper thread, drained by process()).
-  std::mutex finished_mutex_;
-  std::vector<KeyFramePtr> finished_keyframes_;
 };
 
 // The camera model the system uses for a sensor: RGB-D from the settings
