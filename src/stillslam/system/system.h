@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/loop/loop_closer.h"
 #include "stillslam/loop/map_merger.h"
