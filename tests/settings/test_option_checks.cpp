@@ -3,6 +3,7 @@
 // valid range. Components that take the options check them on construction.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -121,6 +122,8 @@ TEST(OptionChecks, Tracking) {
                                    [](auto& o) { o.max_reprojection_error_px = 0; }),
       bad<PoseOptimizerOptions>("PoseOptimizerOptions.chi2_stereo", "-1: must be > 0",
                                 [](auto& o) { o.chi2_stereo = -1; }),
+      bad<PoseOptimizerOptions>("PoseOptimizerOptions.chi2_mono", "nan: must be > 0",  // NaN fails every range
+                                [](auto& o) { o.chi2_mono = std::nan(""); }),
       bad<RelocalizerOptions>("RelocalizerOptions.min_inliers", "0: must be >= 1", [](auto& o) { o.min_inliers = 0; }),
       bad<RelocalizerOptions>("RelocalizerOptions.min_supported_cells", "1.2: must be in [0, 1]",
                               [](auto& o) { o.min_supported_cells = 1.2; }),
