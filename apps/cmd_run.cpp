@@ -25,7 +25,7 @@
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/system/dataset_runner.h"
 #include "stillslam/system/run_summary.h"

@@ -20,7 +20,7 @@
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/io/image_files.h"
 #include "stillslam/io/image_io.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 #include "stillslam/segmentation/yolo_segmenter.h"

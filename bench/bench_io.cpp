@@ -20,7 +20,7 @@
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/euroc_dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/timestamp_association.h"
 #include "stillslam/io/tum_dataset.h"
 

@@ -27,7 +27,7 @@
 #include "../tests/loop/rendered_loop.h"
 #include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 
 using namespace stillslam;
 

@@ -43,7 +43,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"

@@ -22,13 +22,13 @@ namespace fs = std::filesystem;
 
 const fs::path kClip = fs::path(STILLSLAM_SHARED_DIR) / "data" / "euroc_V1_01_micro";
 
-Settings preset(const std::string& name) {
-  return load_settings(fs::path(STILLSLAM_SOURCE_DIR) / "config" / name);
+CameraSettings preset(const std::string& name) {
+  return load_camera_settings(fs::path(STILLSLAM_SOURCE_DIR) / "config" / name);
 }
 
-// Settings without a stereo description: calibration comes from sensor.yaml.
-Settings mono_settings() {
-  Settings s;
+// Camera settings without a stereo description: calibration comes from sensor.yaml.
+CameraSettings mono_settings() {
+  CameraSettings s;
   s.camera.fx = s.camera.fy = 458;
   s.camera.cx = 367;
   s.camera.cy = 248;
@@ -248,9 +248,9 @@ distortion_coefficients: [0.0, 0.0, 0.0, 0.0]
   test::write_tum_fixture(dir.path(), 3);
   fs::copy(dir.path() / "rgbd_dataset_freiburg3_test", seq, fs::copy_options::recursive);
 
-  Settings rgbd = mono_settings();
+  CameraSettings rgbd = mono_settings();
   EXPECT_EQ(open_dataset(seq, rgbd)->kind(), "tum");
-  Settings stereo = mono_settings();
+  CameraSettings stereo = mono_settings();
   stereo.stereo = StereoCalibration{};  // any stereo description
   stereo.stereo->rectified = true;
   const auto d = open_dataset(seq, stereo);

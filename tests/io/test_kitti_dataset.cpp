@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 TEST(KittiDataset, ReadsCalibTimesAndImages) {
   TempDir dir;
   const fs::path seq = test::write_kitti_fixture(dir.path(), 3, true);
-  const auto d = open_dataset(seq, Settings{});
+  const auto d = open_dataset(seq, CameraSettings{});
   EXPECT_EQ(d->kind(), "kitti");
   EXPECT_EQ(d->sensor(), SensorType::Stereo);
   ASSERT_EQ(d->size(), 3u);
@@ -44,14 +44,14 @@ TEST(KittiDataset, ReadsCalibTimesAndImages) {
 TEST(KittiDataset, FallsBackToSettingsWithoutCalib) {
   TempDir dir;
   const fs::path seq = test::write_kitti_fixture(dir.path(), 2, false);
-  const Settings kitti = load_settings(fs::path(STILLSLAM_SOURCE_DIR) / "config" / "kitti_04-12.yaml");
+  const CameraSettings kitti = load_camera_settings(fs::path(STILLSLAM_SOURCE_DIR) / "config" / "kitti_04-12.yaml");
   const auto s = open_dataset(seq, kitti)->rectified_stereo();
   ASSERT_TRUE(s.has_value());
   EXPECT_DOUBLE_EQ(s->left.fx, 707.0912);
   EXPECT_NEAR(s->baseline, 379.8145 / 707.0912, 1e-12);
   EXPECT_EQ(s->left.width, 96);  // the images win over Camera.width
   try {
-    open_dataset(seq, Settings{});
+    open_dataset(seq, CameraSettings{});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("calib.txt: missing, and the settings give no baseline"),
@@ -64,7 +64,7 @@ TEST(KittiDataset, MissingImageAndSkip) {
   TempDir dir;
   const fs::path seq = test::write_kitti_fixture(dir.path(), 3, true);
   fs::remove(seq / "image_1" / "000002.png");
-  const auto d = open_dataset(seq, Settings{});
+  const auto d = open_dataset(seq, CameraSettings{});
   try {
     d->load(2);
     FAIL() << "no error";
@@ -74,7 +74,7 @@ TEST(KittiDataset, MissingImageAndSkip) {
   }
   DatasetOptions options;
   options.skip_bad_frames = true;
-  const auto s = open_dataset(seq, Settings{}, options);
+  const auto s = open_dataset(seq, CameraSettings{}, options);
   EXPECT_TRUE(s->load(1).valid);
   const SensorFrame bad = s->load(2);
   EXPECT_FALSE(bad.valid);

@@ -18,8 +18,8 @@ namespace {
 using test::TempDir;
 namespace fs = std::filesystem;
 
-Settings tum_settings() {
-  Settings s;
+CameraSettings tum_settings() {
+  CameraSettings s;
   s.camera.fx = s.camera.fy = 525;
   s.camera.cx = 32;
   s.camera.cy = 24;
@@ -65,7 +65,7 @@ TEST(TumDataset, AssociatesListsAndLoadsFrames) {
   EXPECT_FLOAT_EQ(f.depth.at<float>(0, 0), 0.0f);  // 0 stays invalid
 
   // DepthMapFactor is applied as given.
-  Settings s = tum_settings();
+  CameraSettings s = tum_settings();
   s.depth_map_factor = 1000;
   EXPECT_FLOAT_EQ(open_dataset(seq, s)->load(0).depth.at<float>(5, 5), 5.0f);
 }
@@ -73,7 +73,7 @@ TEST(TumDataset, AssociatesListsAndLoadsFrames) {
 TEST(TumDataset, ImageSizeMustMatchSettings) {
   TempDir dir;
   const fs::path seq = test::write_tum_fixture(dir.path(), 2);
-  Settings s = tum_settings();
+  CameraSettings s = tum_settings();
   s.camera.width = 640;
   s.camera.height = 480;
   const std::string m = error_of([&] { open_dataset(seq, s)->load(0); });

@@ -12,7 +12,8 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/io/camera_settings.h"
+#include "stillslam/io/yaml_reader.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/sim/sequence_writer.h"
 #include "stillslam/sim/simulator.h"
@@ -86,12 +87,13 @@ TEST(SequenceWriter, WritesTumLayoutThatTheReadersLoad) {
   EXPECT_NEAR(gt[0].T_world_cam.translation().x(), -0.6885, 1e-9);
   EXPECT_NEAR(gt[1].timestamp - gt[0].timestamp, 1.0 / 30, 1e-6);
 
-  // io's settings loader and TUM reader accept the sequence as written.
-  const Settings settings = load_settings(dir.path / "settings.yaml");
+  // io's camera settings and TUM reader accept the sequence as written.
+  const CameraSettings settings = load_camera_settings(dir.path / "settings.yaml");
   EXPECT_NEAR(settings.camera.fx, 535.4 / 4, 1e-6);
   EXPECT_EQ(settings.camera.width, 160);
   EXPECT_DOUBLE_EQ(settings.depth_map_factor, 5000);
-  EXPECT_TRUE(fs::path(settings.segmentation.model_path).is_absolute());
+  EXPECT_TRUE(fs::path(YamlReader(dir.path / "settings.yaml").optional_string("Segmentation.model").value_or(""))
+                  .is_absolute());
   const auto dataset = open_dataset(dir.path, settings);
   ASSERT_EQ(dataset->size(), 6u);
   EXPECT_EQ(dataset->kind(), "tum");

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/io/camera_settings.h"
 #include "stillslam/sim/noise.h"
 #include "stillslam/sim/sequence_writer.h"
 #include "stillslam/sim/simulator.h"
@@ -65,7 +65,7 @@ TEST(Stereo, EurocLayoutLoadsWithItsSettings) {
   o.frames = 3;
   const SequenceSummary s = write_sequence(dir, o);
   ASSERT_FALSE(s.settings_stereo.empty());
-  const Settings settings = load_settings(s.settings_stereo);
+  const CameraSettings settings = load_camera_settings(s.settings_stereo);
   ASSERT_TRUE(settings.stereo.has_value());
   const auto dataset = open_dataset(dir, settings);
   EXPECT_EQ(dataset->kind(), "euroc");
@@ -79,7 +79,7 @@ TEST(Stereo, EurocLayoutLoadsWithItsSettings) {
   EXPECT_EQ(f.right.size(), cv::Size(320, 240));
   EXPECT_EQ(f.right.type(), CV_8UC1);
   // The left image comes in colour (for the segmenter): the rgb/ image itself.
-  const auto tum = open_dataset(dir, load_settings(s.settings));
+  const auto tum = open_dataset(dir, load_camera_settings(s.settings));
   EXPECT_EQ(tum->kind(), "tum");  // the RGB-D layout in the same folder still opens as TUM
   const SensorFrame rgbd = tum->load(1);
   ASSERT_EQ(f.color.type(), CV_8UC3);

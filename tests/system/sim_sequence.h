@@ -3,7 +3,7 @@
 // SensorFrames plus ground truth, for end-to-end tests of the system.
 
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/sim/sensor_frame.h"
 #include "stillslam/sim/simulator.h"

@@ -5,8 +5,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <nlohmann/json.hpp>
 
+#include "stillslam/io/camera_settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/sim/sequence_writer.h"
 
@@ -14,6 +17,11 @@ namespace stillslam {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 std::size_t count_lines(const fs::path& p) {
   std::ifstream in(p);
@@ -71,6 +79,55 @@ TEST(RunCommand, WritesTrajectoriesAndStats) {
                           (dir / "missing").string() + " --output " + (dir / "out2").string() + " > " +
                           (dir / "log2.txt").string() + " 2>&1";
   EXPECT_NE(std::system(bad.c_str()), 0);
+  fs::remove_all(dir);
+}
+
+// A user's ORB-SLAM3 RGB-D file as it is (old-style keys, Viewer.*, no
+// Segmentation.*) runs with segmentation on, using the shipped model.
+TEST(RunCommand, OrbSlam3SettingsRunWithTheShippedModel) {
+  const fs::path binary(STILLSLAM_BINARY);
+  if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
+  const fs::path dir = fs::temp_directory_path() / "stillslam_test_run_orbslam3_settings";
+  fs::remove_all(dir);
+  sim::SimulationOptions opts;
+  opts.trajectory = "walking_xyz";
+  opts.frames = 6;
+  opts.width = 400;
+  opts.height = 300;
+  opts.supersampling = 1;
+  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
+  const sim::SequenceSummary seq = sim::write_sequence(dir / "seq", opts);
+  const CameraCalibration c = load_camera_settings(seq.settings).camera;
+  const fs::path config = dir / "TUM3.yaml";
+  std::ofstream(config) << "%YAML:1.0\n"
+                        << "Camera.fx: " << c.fx << "\nCamera.fy: " << c.fy << "\nCamera.cx: " << c.cx
+                        << "\nCamera.cy: " << c.cy << "\n"
+                        << "Camera.k1: 0.0\nCamera.k2: 0.0\nCamera.p1: 0.0\nCamera.p2: 0.0\n"
+                        << "Camera.width: " << c.width << "\nCamera.height: " << c.height << "\n"
+                        << "Camera.fps: 30.0\nCamera.bf: " << 0.0747 * c.fx << "\nCamera.RGB: 1\n"
+                        << "ThDepth: 40.0\nDepthMapFactor: 5000.0\n"
+                        << "ORBextractor.nFeatures: 1000\nORBextractor.scaleFactor: 1.2\nORBextractor.nLevels: 8\n"
+                        << "ORBextractor.iniThFAST: 20\nORBextractor.minThFAST: 7\n"
+                        << "Viewer.KeyFrameSize: 0.05\nViewer.KeyFrameLineWidth: 1\nViewer.GraphLineWidth: 0.9\n"
+                        << "Viewer.PointSize:2\nViewer.CameraSize: 0.08\nViewer.CameraLineWidth: 3\n"
+                        << "Viewer.ViewpointX: 0\nViewer.ViewpointY: -0.7\nViewer.ViewpointZ: -1.8\n"
+                        << "Viewer.ViewpointF: 500\n";
+  const fs::path out = dir / "out";
+  const fs::path log = dir / "log.txt";
+  const std::string cmd = binary.string() + " run --config " + config.string() + " --input " +
+                          (dir / "seq").string() + " --output " + out.string() + " --deterministic --vocabulary none > " +
+                          log.string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(log);
+  EXPECT_NE(read_text(log).find("segmentation on"), std::string::npos) << read_text(log);
+  std::ifstream stats_file(out / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(stats_file);
+  EXPECT_TRUE(stats["segmentation"].get<bool>());
+  ASSERT_EQ(stats["frames"].size(), 6u);
+  for (const nlohmann::json& frame : stats["frames"]) {
+    EXPECT_TRUE(frame.contains("detections"));
+    EXPECT_TRUE(frame.contains("mask_coverage"));
+    EXPECT_GT(frame["times_ms"]["segmentation"].get<double>(), 0.0);  // the network ran on this frame
+  }
   fs::remove_all(dir);
 }
 

@@ -21,20 +21,6 @@ constexpr float kPatchSize = 31.f;  // keypoint.size at level 0 (BRIEF patch)
 // the rotated pattern (coordinates within +-15 after rounding) stay inside.
 constexpr int kBorder = BriefPattern::kRadius + 1;
 
-void validate(const OrbOptions& o) {
-  if (o.n_features < 1) {
-    throw Error("ORBextractor.nFeatures must be >= 1 (got " + std::to_string(o.n_features) + ")");
-  }
-  if (o.ini_th_fast < 1 || o.ini_th_fast > 254 || o.min_th_fast < 1 || o.min_th_fast > 254) {
-    throw Error("ORBextractor.iniThFAST and ORBextractor.minThFAST must be in [1, 254] (got " +
-                std::to_string(o.ini_th_fast) + ", " + std::to_string(o.min_th_fast) +
-                "); usual values are 20 and 7");
-  }
-  if (o.fast_cell_size < 8) {
-    throw Error("ORB fast_cell_size must be >= 8 pixels (got " + std::to_string(o.fast_cell_size) + ")");
-  }
-}
-
 // Features per level, a geometric series with ratio 1 / scale_factor (a level
 // gets features in proportion to its image side, ORB-SLAM's choice), summing
 // to n_features exactly.
@@ -115,7 +101,7 @@ std::vector<cv::Mat> build_image_pyramid(const cv::Mat& gray, const ScalePyramid
 OrbExtractor::OrbExtractor(const OrbOptions& options)
     : options_(options),
       pyramid_(options),
-      features_per_level_((validate(options), split_features(options.n_features, pyramid_))),
+      features_per_level_((options.check(), split_features(options.n_features, pyramid_))),
       pattern_(BriefPattern::generate()) {}
 
 OrbFeatures OrbExtractor::extract(const cv::Mat& gray) const { return extract(gray, nullptr); }

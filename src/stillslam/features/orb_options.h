@@ -12,6 +12,8 @@ struct OrbOptions {
   // Side of the square cells (level pixels) in which FAST runs with its own
   // threshold fallback; small cells let weakly textured regions contribute.
   int fast_cell_size = 30;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 }  // namespace stillslam

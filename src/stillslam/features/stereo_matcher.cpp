@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/features/descriptor.h"
 #include "stillslam/features/pyramid_coordinates.h"
 
@@ -244,6 +245,18 @@ StereoMatches stereo_from_depth(const std::vector<cv::KeyPoint>& raw,
     ++out.num_matches;
   }
   return out;
+}
+
+void StereoMatchOptions::check() const {
+  using namespace option_check;
+  in_range("StereoMatchOptions.max_descriptor_distance", max_descriptor_distance, 0, 256);
+  at_least("StereoMatchOptions.patch_half_size", patch_half_size, 1);
+  at_least("StereoMatchOptions.search_window", search_window, 0);
+  above("StereoMatchOptions.row_band", row_band, 0);
+  at_least("StereoMatchOptions.min_disparity", min_disparity, 0);
+  // < 0 means fx (see above); a given maximum must leave room above the minimum.
+  if (max_disparity >= 0) above("StereoMatchOptions.max_disparity", max_disparity, min_disparity);
+  above("StereoMatchOptions.sad_outlier_factor", sad_outlier_factor, 0);
 }
 
 }  // namespace stillslam

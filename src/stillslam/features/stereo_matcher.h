@@ -32,6 +32,8 @@ struct StereoMatchOptions {
   // generated halfsphere sequences it gave no gain (bench/README.md).
   bool flow_for_unmatched = false;
   StereoFlowOptions flow;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // fx: rectified focal length (pixels); bf: baseline * fx (metres * pixels).

@@ -7,7 +7,7 @@
 
 namespace stillslam {
 
-std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const Settings& settings,
+std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const CameraSettings& settings,
                                       const DatasetOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;

@@ -21,7 +21,7 @@
 #include <opencv2/core.hpp>
 
 #include "stillslam/core/sensor_frame.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/io/camera_settings.h"
 
 namespace stillslam {
 
@@ -56,7 +56,7 @@ class Dataset {
   mutable std::atomic<std::size_t> skipped_{0};
 };
 
-std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const Settings& settings,
+std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const CameraSettings& settings,
                                       const DatasetOptions& options = {});
 
 }  // namespace stillslam

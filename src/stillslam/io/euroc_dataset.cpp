@@ -91,7 +91,7 @@ EurocCamera read_euroc_camera(const std::filesystem::path& sensor_yaml) {
   return cam;
 }
 
-EurocDataset::EurocDataset(const std::filesystem::path& mav0, const Settings& settings,
+EurocDataset::EurocDataset(const std::filesystem::path& mav0, const CameraSettings& settings,
                            const DatasetOptions& options)
     : FileDataset(options.skip_bad_frames), mav0_(mav0) {
   // Pair cam0 and cam1 by timestamp (identical in EuRoC, tolerant otherwise).

@@ -36,7 +36,7 @@ class EurocDataset : public FileDataset {
   // (Camera2.* + Stereo.T_c1_c2, or LEFT/RIGHT blocks), else from the
   // sensor.yaml files (T_c1_c2 = inv(T_BS_cam0) * T_BS_cam1). For an already
   // rectified pair (zero distortion, parallel cameras) the remap is the identity.
-  EurocDataset(const std::filesystem::path& mav0, const Settings& settings, const DatasetOptions& options);
+  EurocDataset(const std::filesystem::path& mav0, const CameraSettings& settings, const DatasetOptions& options);
 
   std::string kind() const override { return "euroc"; }
   SensorType sensor() const override { return SensorType::Stereo; }

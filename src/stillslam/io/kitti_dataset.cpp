@@ -48,7 +48,7 @@ StereoCalibration read_kitti_calibration(const std::filesystem::path& calib_txt)
   return s;
 }
 
-KittiDataset::KittiDataset(const std::filesystem::path& folder, const Settings& settings,
+KittiDataset::KittiDataset(const std::filesystem::path& folder, const CameraSettings& settings,
                            const DatasetOptions& options)
     : FileDataset(options.skip_bad_frames), folder_(folder) {
   const auto times_file = folder / "times.txt";

@@ -18,7 +18,7 @@ class KittiDataset : public FileDataset {
   // Uses calib.txt when present, else the Settings (which then must give
   // Camera.bf / Stereo.b). The image size comes from the first left image,
   // falling back to Camera.width/height.
-  KittiDataset(const std::filesystem::path& folder, const Settings& settings, const DatasetOptions& options);
+  KittiDataset(const std::filesystem::path& folder, const CameraSettings& settings, const DatasetOptions& options);
 
   std::string kind() const override { return "kitti"; }
   SensorType sensor() const override { return SensorType::Stereo; }

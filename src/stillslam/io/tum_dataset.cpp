@@ -64,7 +64,7 @@ std::vector<TumPair> associate_tum_lists(const std::filesystem::path& rgb_list,
   return pairs;
 }
 
-TumDataset::TumDataset(const std::filesystem::path& folder, const Settings& settings,
+TumDataset::TumDataset(const std::filesystem::path& folder, const CameraSettings& settings,
                        const DatasetOptions& options)
     : FileDataset(options.skip_bad_frames),
       folder_(folder),

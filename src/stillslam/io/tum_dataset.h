@@ -29,7 +29,7 @@ std::vector<TumPair> associate_tum_lists(const std::filesystem::path& rgb_list,
 class TumDataset : public FileDataset {
  public:
   // Throws Error when the lists are missing or empty.
-  TumDataset(const std::filesystem::path& folder, const Settings& settings, const DatasetOptions& options);
+  TumDataset(const std::filesystem::path& folder, const CameraSettings& settings, const DatasetOptions& options);
 
   std::string kind() const override { return "tum"; }
   SensorType sensor() const override { return SensorType::Rgbd; }

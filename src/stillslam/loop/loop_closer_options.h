@@ -31,6 +31,8 @@ struct LoopCloserOptions {
     o.outlier_rounds = 0;
     return o;
   }
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct LoopCloserStats {

@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/map/fuse.h"
 #include "stillslam/optimize/pose_graph.h"
 
@@ -159,6 +160,13 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
   loop_edges.insert({query.id(), detection.loop->id()});
   loop_edges.insert({detection.loop->id(), query.id()});
   return stats;
+}
+
+void LoopCorrectionOptions::check() const {
+  using namespace option_check;
+  above("LoopCorrectionOptions.fuse_window", fuse_window, 0);
+  at_least("LoopCorrectionOptions.strong_covisibility_weight", strong_covisibility_weight, 0);
+  at_least("LoopCorrectionOptions.pose_graph_iterations", pose_graph_iterations, 1);
 }
 
 }  // namespace stillslam

@@ -19,6 +19,8 @@ struct LoopCorrectionOptions {
   float fuse_window = 4.f;              // pixels at level 0 (ORB-SLAM: 4)
   int strong_covisibility_weight = 100;  // covisibility edges of the essential graph
   int pose_graph_iterations = 20;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct LoopCorrectionStats {

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/features/descriptor.h"
 #include "stillslam/map/matching_thresholds.h"
 #include "stillslam/optimize/pose_optimizer.h"
@@ -58,7 +59,9 @@ std::ptrdiff_t match_projection(const KeyFrame& kf, const Eigen::Isometry3d& T_c
 }  // namespace
 
 LoopDetector::LoopDetector(const PlaceRecognizer& recognizer, LoopDetectorOptions options)
-    : recognizer_(recognizer), options_(options) {}
+    : recognizer_(recognizer), options_(options) {
+  options_.check();
+}
 
 void LoopDetector::loop_closed(std::uint64_t query_id) {
   last_loop_id_ = query_id;
@@ -319,6 +322,18 @@ std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, con
   d.inliers = r.num_inliers;
   d.T_world_query_corrected = r.T_cam_world.inverse();
   return d;
+}
+
+void LoopDetectorOptions::check() const {
+  using namespace option_check;
+  at_least("LoopDetectorOptions.min_keyframes_between_loops", min_keyframes_between_loops, 0);
+  at_least("LoopDetectorOptions.consistency_threshold", consistency_threshold, 1);
+  at_least("LoopDetectorOptions.group_size", static_cast<double>(group_size), 1);
+  in_range("LoopDetectorOptions.group_score_ratio", group_score_ratio, 0, 1);
+  at_least("LoopDetectorOptions.min_bow_matches", min_bow_matches, 1);
+  above("LoopDetectorOptions.projection_window", projection_window, 0);
+  at_least("LoopDetectorOptions.min_inliers", min_inliers, 1);
+  at_least("LoopDetectorOptions.min_confirmation_matches", min_confirmation_matches, 0);
 }
 
 }  // namespace stillslam

@@ -51,6 +51,8 @@ struct LoopDetectorOptions {
   // projection (ORB-SLAM3: 10 neighbours, 30 matches).
   std::size_t confirmation_neighbours = 10;
   int min_confirmation_matches = 30;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // An accepted loop: the query keyframe seen from the loop keyframe's map.

@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/loop/global_bundle_adjustment.h"
 #include "stillslam/map/fuse.h"
 #include "stillslam/optimize/pose_graph.h"
@@ -174,6 +175,7 @@ void propagate_correction(Map& source, const std::unordered_set<const KeyFrame*>
 }  // namespace
 
 MapMergeStats merge_maps(Map& target, Map& source, const LoopDetection& detection, const MapMergerOptions& options) {
+  options.check();
   MapMergeStats stats;
   KeyFrame& query = *detection.query;
   stats.target_map = target.id();
@@ -243,6 +245,16 @@ MapMergeStats merge_maps(Map& target, Map& source, const LoopDetection& detectio
     stats.global_bundle_adjustment = !result.aborted;
   }
   return stats;
+}
+
+void MapMergerOptions::check() const {
+  using namespace option_check;
+  detector.check();
+  above("MapMergerOptions.fuse_window", fuse_window, 0);
+  welding_bundle_adjustment.check();
+  at_least("MapMergerOptions.strong_covisibility_weight", strong_covisibility_weight, 0);
+  at_least("MapMergerOptions.pose_graph_iterations", pose_graph_iterations, 1);
+  global_bundle_adjustment_options.check();
 }
 
 }  // namespace stillslam

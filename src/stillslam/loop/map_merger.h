@@ -51,6 +51,8 @@ struct MapMergerOptions {
     o.outlier_rounds = 0;
     return o;
   }
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct MapMergeStats {

@@ -3,7 +3,9 @@
 namespace stillslam {
 
 MergeDetector::MergeDetector(const PlaceRecognizer& recognizer, LoopDetectorOptions options)
-    : recognizer_(recognizer), options_(options), verifier_(recognizer, options) {}
+    : recognizer_(recognizer), options_(options), verifier_(recognizer, options) {
+  options_.check();
+}
 
 std::optional<LoopDetection> MergeDetector::detect(const Map& other, const KeyFrame& query) {
   auto it = detectors_.find(other.id());

@@ -4,11 +4,13 @@
 #include <unordered_set>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 
 namespace stillslam {
 
 PlaceRecognizer::PlaceRecognizer(std::shared_ptr<const Vocabulary> vocabulary, PlaceRecognizerOptions options)
     : vocabulary_(std::move(vocabulary)), options_(options) {
+  options_.check();
   if (!vocabulary_ || vocabulary_->empty()) {
     throw Error("PlaceRecognizer: the vocabulary is empty; load one with Vocabulary::load (vocab/orb_vocabulary.bin)");
   }
@@ -105,6 +107,14 @@ std::vector<PlaceCandidate> PlaceRecognizer::loop_candidates(const KeyFrame& key
   const KeyframeId self = keyframe.id();
   q.exclude = [&](KeyframeId id) { return id == self || excluded.count(id) > 0; };
   return filter_by_common_words(database_.query(d->bow, q), max_results.value_or(options_.max_loop_candidates));
+}
+
+void PlaceRecognizerOptions::check() const {
+  using namespace option_check;
+  at_least("PlaceRecognizerOptions.direct_index_level", direct_index_level, 0);
+  at_least("PlaceRecognizerOptions.max_relocalization_candidates", static_cast<double>(max_relocalization_candidates), 1);
+  at_least("PlaceRecognizerOptions.max_loop_candidates", static_cast<double>(max_loop_candidates), 1);
+  in_range("PlaceRecognizerOptions.min_common_words_ratio", min_common_words_ratio, 0, 1);
 }
 
 }  // namespace stillslam

@@ -28,6 +28,8 @@ struct PlaceRecognizerOptions {
   // Candidates must share at least this fraction of the best candidate's
   // common-word count (ORB-SLAM: 0.8).
   double min_common_words_ratio = 0.8;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // Bag of words and direct index of one image.

@@ -1,5 +1,7 @@
 #include "stillslam/mapping/keyframe_culling.h"
 
+#include "stillslam/core/option_check.h"
+
 namespace stillslam {
 
 double keyframe_redundancy(const KeyFrame& kf, const KeyFrameCullingOptions& options) {
@@ -37,6 +39,12 @@ int cull_redundant_keyframes(Map& map, KeyFrame& kf, const KeyFrameCullingOption
     }
   }
   return culled;
+}
+
+void KeyFrameCullingOptions::check() const {
+  using namespace option_check;
+  in_half_open("KeyFrameCullingOptions.redundancy", redundancy, 0, 1);
+  at_least("KeyFrameCullingOptions.min_observers", min_observers, 1);
 }
 
 }  // namespace stillslam

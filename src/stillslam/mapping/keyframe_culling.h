@@ -12,6 +12,8 @@ namespace stillslam {
 struct KeyFrameCullingOptions {
   double redundancy = 0.9;
   int min_observers = 3;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // Caller holds the map's update mutex. Returns the number of culled keyframes

@@ -34,6 +34,8 @@ struct LocalMapperOptions {
     o.iterations_after_outliers = 10;
     return o;
   }
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct LocalMapperStats {

@@ -3,6 +3,7 @@
 #include <set>
 #include <unordered_set>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/map/fuse.h"
 
 namespace stillslam {
@@ -47,6 +48,12 @@ int fuse_with_neighbours(KeyFrame& kf, const FusionOptions& options) {
   }
   kf.update_connections();
   return fused;
+}
+
+void FusionOptions::check() const {
+  using namespace option_check;
+  at_least("FusionOptions.neighbours", static_cast<double>(neighbours), 1);
+  at_least("FusionOptions.second_neighbours", static_cast<double>(second_neighbours), 0);
 }
 
 }  // namespace stillslam

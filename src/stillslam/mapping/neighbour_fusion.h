@@ -9,6 +9,8 @@ namespace stillslam {
 struct FusionOptions {
   std::size_t neighbours = 10;
   std::size_t second_neighbours = 5;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // Caller holds the map's update mutex. Returns fused/added observations.

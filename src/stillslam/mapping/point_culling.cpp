@@ -1,5 +1,7 @@
 #include "stillslam/mapping/point_culling.h"
 
+#include "stillslam/core/option_check.h"
+
 namespace stillslam {
 
 int cull_recent_points(std::vector<MapPointPtr>& recent, std::uint64_t current_keyframe_id,
@@ -21,6 +23,12 @@ int cull_recent_points(std::vector<MapPointPtr>& recent, std::uint64_t current_k
   }
   recent = std::move(kept);
   return culled;
+}
+
+void PointCullingOptions::check() const {
+  using namespace option_check;
+  in_range("PointCullingOptions.min_found_ratio", min_found_ratio, 0, 1);
+  at_least("PointCullingOptions.min_observations", min_observations, 0);
 }
 
 }  // namespace stillslam

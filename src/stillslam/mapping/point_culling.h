@@ -13,6 +13,8 @@ namespace stillslam {
 struct PointCullingOptions {
   double min_found_ratio = 0.25;
   int min_observations = 3;  // stereo/RGB-D observations count twice
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // Returns the number of points set bad.

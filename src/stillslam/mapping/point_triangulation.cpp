@@ -3,6 +3,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/geometry/triangulation.h"
 #include "stillslam/optimize/observation_options.h"
 
@@ -95,6 +96,10 @@ int create_new_points(Map& map, KeyFrame& kf, std::vector<MapPointPtr>& recent,
     }
   }
   return created;
+}
+
+void PointTriangulationOptions::check() const {
+  option_check::at_least("PointTriangulationOptions.neighbours", static_cast<double>(neighbours), 1);
 }
 
 }  // namespace stillslam

@@ -15,6 +15,8 @@ namespace stillslam {
 struct PointTriangulationOptions {
   std::size_t neighbours = 10;
   TriangulationSearchOptions search;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 // Holds the map's update mutex per neighbour. `should_stop` (may be empty) is

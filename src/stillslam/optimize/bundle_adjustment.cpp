@@ -10,6 +10,7 @@
 #include <string>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/optimize/reprojection_costs.h"
 #include "stillslam/optimize/se3_manifold.h"
 
@@ -168,6 +169,16 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   }
   result.points = std::move(xyz);
   return result;
+}
+
+void BundleAdjustmentOptions::check() const {
+  using namespace option_check;
+  at_least("BundleAdjustmentOptions.iterations", iterations, 1);
+  at_least("BundleAdjustmentOptions.outlier_rounds", outlier_rounds, 0);
+  at_least("BundleAdjustmentOptions.iterations_after_outliers", iterations_after_outliers, 0);
+  above("BundleAdjustmentOptions.chi2_mono", chi2_mono, 0);
+  above("BundleAdjustmentOptions.chi2_stereo", chi2_stereo, 0);
+  at_least("BundleAdjustmentOptions.num_threads", num_threads, 1);
 }
 
 }  // namespace stillslam

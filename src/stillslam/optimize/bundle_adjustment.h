@@ -51,6 +51,8 @@ struct BundleAdjustmentOptions {
   // measured in bench/bench_optimize.cpp), sparse Schur (SuiteSparse) above.
   BaLinearSolver linear_solver = BaLinearSolver::Auto;
   const std::atomic<bool>* abort = nullptr;  // stop early when set (checked every iteration)
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct BundleAdjustmentResult {

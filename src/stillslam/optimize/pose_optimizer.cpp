@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/optimize/pose_residuals.h"
 #include "stillslam/optimize/reprojection_costs.h"
 
@@ -80,6 +81,14 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
   result.T_cam_world = T;
   result.num_inliers = classify(T);
   return result;
+}
+
+void PoseOptimizerOptions::check() const {
+  using namespace option_check;
+  at_least("PoseOptimizerOptions.rounds", rounds, 1);
+  at_least("PoseOptimizerOptions.iterations_per_round", iterations_per_round, 1);
+  above("PoseOptimizerOptions.chi2_mono", chi2_mono, 0);
+  above("PoseOptimizerOptions.chi2_stereo", chi2_stereo, 0);
 }
 
 }  // namespace stillslam

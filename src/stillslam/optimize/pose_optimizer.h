@@ -26,6 +26,8 @@ struct PoseOptimizerOptions {
   double chi2_stereo = kChi2Stereo95;
   // Huber loss (delta = sqrt(chi2)) on all rounds but the last.
   bool huber = true;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct PoseOptimizationResult {

@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "stillslam/core/option_check.h"
+
 namespace stillslam {
 
 cv::Mat1b MaskHold::update(const std::vector<cv::Mat1b>& instances, cv::Size size) {
@@ -33,6 +35,13 @@ cv::Mat1b MaskHold::update(const std::vector<cv::Mat1b>& instances, cv::Size siz
   }
   held_ = std::move(next);
   return held_union;
+}
+
+void MaskHoldOptions::check() const {
+  using namespace option_check;
+  at_least("MaskHoldOptions.frames", frames, 0);
+  in_half_open("MaskHoldOptions.min_overlap", min_overlap, 0, 1);
+  at_least("MaskHoldOptions.grow_px_per_frame", grow_px_per_frame, 0);
 }
 
 }  // namespace stillslam

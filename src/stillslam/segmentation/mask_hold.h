@@ -15,11 +15,13 @@ struct MaskHoldOptions {
   int frames = 10;            // frames a lost instance is held (0: off)
   double min_overlap = 0.3;   // share of a held instance this frame's masks must cover to find it again
   int grow_px_per_frame = 4;  // growth per held frame (a walking person moves a few pixels a frame)
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 class MaskHold {
  public:
-  explicit MaskHold(MaskHoldOptions options = {}) : options_(options) {}
+  explicit MaskHold(MaskHoldOptions options = {}) : options_(options) { options_.check(); }
 
   // instances: this frame's dynamic instance masks (frame-size, 255 inside).
   // Returns the union of the held instances not found in this frame (empty

@@ -16,10 +16,10 @@ struct SegmentationOptions {
   // Segmentation.holdFrames: a dynamic instance the segmenter loses stays masked
   // this many frames (detections flicker; see mask_hold.h). 0: off.
   int hold_frames = 10;
-  // Segmentation.threads: OpenCV worker threads. OpenCV's thread count is process-wide, so
-  // YoloSegmenter applies it once at construction (cv::setNumThreads). 1 (default) runs the
-  // network serially on the calling thread, which on a 2-core machine leaves the other core
-  // to ORB extraction running in parallel; 0 leaves OpenCV's own setting untouched.
+  // Segmentation.threads: the size of OpenCV's process-wide thread pool (the DNN and ORB
+  // extraction's parallel_for_), applied once by the application, not by a library call.
+  // 1 (default) runs both serially on their calling threads; 0 keeps OpenCV's own setting.
+  // (Until the application does it, YoloSegmenter's constructor still calls cv::setNumThreads.)
   int threads = 1;
   // Segmentation.masksForClassesOnly: compute instance masks only for `classes` (SLAM only
   // needs the dynamic ones; saves ~1 ms per other detection). Other detections keep an empty mask.
@@ -27,6 +27,8 @@ struct SegmentationOptions {
   // Segmentation.agnosticNms: let a box suppress overlapping boxes of any class (the
   // default is class-aware NMS, so a "truck" box over a "bus" survives).
   bool agnostic_nms = false;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 }  // namespace stillslam

@@ -11,7 +11,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/eval/metrics.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/system/dataset_runner.h"
 
 namespace stillslam {

@@ -30,7 +30,7 @@
 
 #include "stillslam/core/work_queue.h"
 #include "stillslam/io/dataset.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/loop/loop_closer.h"
 #include "stillslam/loop/map_merger.h"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/features/descriptor_matcher.h"
 #include "stillslam/geometry/pnp.h"
 #include "stillslam/map/matching_thresholds.h"
@@ -78,6 +79,14 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
   }
   out.accepted = true;
   return out;
+}
+
+void InitialViewCheckOptions::check() const {
+  using namespace option_check;
+  in_range("InitialViewCheckOptions.max_masked_fraction", max_masked_fraction, 0, 1);
+  in_range("InitialViewCheckOptions.max_moving_share", max_moving_share, 0, 1);
+  at_least("InitialViewCheckOptions.min_matches", min_matches, 1);
+  above("InitialViewCheckOptions.max_reprojection_error_px", max_reprojection_error_px, 0);
 }
 
 }  // namespace stillslam

@@ -25,6 +25,8 @@ struct InitialViewCheckOptions {
   double max_moving_share = 0.2;
   int min_matches = 50;  // fewer: the two frames do not overlap enough to judge
   double max_reprojection_error_px = 2.5;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct InitialViewCheck {

@@ -4,6 +4,7 @@
 #include <array>
 #include <unordered_set>
 
+#include "stillslam/core/option_check.h"
 #include "stillslam/map/projection_search.h"
 #include "stillslam/map/keyframe_point_features.h"
 #include "stillslam/place/direct_index_matcher.h"
@@ -211,6 +212,23 @@ bool Relocalizer::verify(Frame& frame, const KeyFrame& kf, RelocalizationResult&
     return false;
   }
   return true;
+}
+
+void RelocalizerOptions::check() const {
+  using namespace option_check;
+  at_least("RelocalizerOptions.min_bow_matches", min_bow_matches, 1);
+  at_least("RelocalizerOptions.min_inliers", min_inliers, 1);
+  at_least("RelocalizerOptions.min_ransac_inliers", min_ransac_inliers, 1);
+  in_range("RelocalizerOptions.min_depth_fraction", min_depth_fraction, 0, 1);
+  above("RelocalizerOptions.coarse_window", coarse_window, 0);
+  above("RelocalizerOptions.fine_window", fine_window, 0);
+  in_range("RelocalizerOptions.min_found_ratio", min_found_ratio, 0, 1);
+  at_least("RelocalizerOptions.min_checked_points", min_checked_points, 0);
+  in_range("RelocalizerOptions.min_supported_cells", min_supported_cells, 0, 1);
+  at_least("RelocalizerOptions.min_judged_cells", min_judged_cells, 0);
+  at_least("RelocalizerOptions.min_cell_predictions", min_cell_predictions, 0);
+  in_range("RelocalizerOptions.min_cell_found_ratio", min_cell_found_ratio, 0, 1);
+  above("RelocalizerOptions.check_radius", check_radius, 0);
 }
 
 }  // namespace stillslam

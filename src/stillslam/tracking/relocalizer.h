@@ -62,6 +62,8 @@ struct RelocalizerOptions {
   // A prediction is checkable when a frame keypoint lies within this radius
   // (pixels at level 0, scaled with the predicted level) at a level +-1.
   float check_radius = 8.f;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 struct RelocalizationResult {
@@ -82,7 +84,7 @@ struct RelocalizationResult {
 
 class Relocalizer {
  public:
-  explicit Relocalizer(RelocalizerOptions options = {}) : options_(options) {}
+  explicit Relocalizer(RelocalizerOptions options = {}) : options_(options) { options_.check(); }
 
   // On success the frame holds the pose, its inlier map-point matches (outliers
   // cleared) and the winning keyframe as reference; on failure the frame's

@@ -18,7 +18,9 @@ constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides w
 }  // namespace
 
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
-    : map_(&map), options_(options), link_(std::move(link)) {}
+    : map_(&map), options_(options), link_(std::move(link)) {
+  options_.check();
+}
 
 void Tracker::start_new_map(Map& map) {
   map_ = &map;

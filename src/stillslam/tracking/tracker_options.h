@@ -30,6 +30,8 @@ struct TrackerOptions {
   // Track against the map without changing it (a loaded map): no keyframes,
   // no map points; never initializes a map of its own.
   bool localization_only = false;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
 };
 
 }  // namespace stillslam

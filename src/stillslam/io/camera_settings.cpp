@@ -1,4 +1,4 @@
-#include "stillslam/io/settings.h"
+#include "stillslam/io/camera_settings.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,7 +6,6 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/text.h"
-#include "stillslam/io/settings_parts.h"
 #include "stillslam/io/yaml_reader.h"
 
 namespace stillslam {
@@ -134,7 +133,7 @@ std::optional<double> first_number(const YamlReader& yaml, std::initializer_list
   return std::nullopt;
 }
 
-void read_camera_section(const YamlReader& yaml, Settings& s) {
+void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
   const CameraType type = read_camera_type(yaml);
   std::string prefix = "Camera.";
   if (const auto version = yaml.optional_string("File.version")) {
@@ -159,12 +158,6 @@ void read_camera_section(const YamlReader& yaml, Settings& s) {
   std::string th_key;
   s.th_depth = first_number(yaml, {"Stereo.ThDepth", "ThDepth"}, &th_key).value_or(s.th_depth);
   if (s.th_depth <= 0) yaml.fail(th_key, "must be positive (close/far threshold in baselines)");
-  if (const auto flow = yaml.optional_integer("Stereo.flowMatching")) {
-    if (*flow != 0 && *flow != 1) {
-      yaml.fail("Stereo.flowMatching", "must be 0 (descriptor matches only) or 1 (optical flow for the rest)");
-    }
-    s.stereo_flow_matching = *flow == 1;
-  }
   std::string depth_key;
   const auto depth_factor = first_number(yaml, {"RGBD.DepthMapFactor", "DepthMapFactor"}, &depth_key);
   if (depth_factor) {
@@ -208,35 +201,21 @@ void read_camera_section(const YamlReader& yaml, Settings& s) {
   if (baseline) s.bf = *baseline * s.camera.fx;
 }
 
-void read_orb_section(const YamlReader& yaml, OrbOptions& orb) {
-  if (const auto n = yaml.optional_integer("ORBextractor.nFeatures")) orb.n_features = *n;
-  if (orb.n_features <= 0) yaml.fail("ORBextractor.nFeatures", "must be positive");
-  if (const auto f = yaml.optional_number("ORBextractor.scaleFactor")) orb.scale_factor = static_cast<float>(*f);
-  if (orb.scale_factor <= 1.0f) yaml.fail("ORBextractor.scaleFactor", "must be greater than 1 (e.g. 1.2)");
-  if (const auto n = yaml.optional_integer("ORBextractor.nLevels")) orb.n_levels = *n;
-  if (orb.n_levels < 1) yaml.fail("ORBextractor.nLevels", "must be at least 1");
-  if (const auto t = yaml.optional_integer("ORBextractor.iniThFAST")) orb.ini_th_fast = *t;
-  if (const auto t = yaml.optional_integer("ORBextractor.minThFAST")) orb.min_th_fast = *t;
-  if (orb.ini_th_fast <= 0) yaml.fail("ORBextractor.iniThFAST", "must be positive");
-  if (orb.min_th_fast <= 0 || orb.min_th_fast > orb.ini_th_fast) {
-    yaml.fail("ORBextractor.minThFAST", "must be positive and not above ORBextractor.iniThFAST");
-  }
-}
-
 }  // namespace
 
-double Settings::baseline() const { return camera.fx > 0 ? bf / camera.fx : 0.0; }
+double CameraSettings::baseline() const { return camera.fx > 0 ? bf / camera.fx : 0.0; }
 
-double Settings::close_depth() const { return th_depth * baseline(); }
+double CameraSettings::close_depth() const { return th_depth * baseline(); }
 
-Settings load_settings(const std::filesystem::path& yaml_file) {
-  const YamlReader yaml(yaml_file);
-  Settings s;
-  s.file = yaml_file;
+CameraSettings read_camera_settings(const YamlReader& yaml) {
+  CameraSettings s;
+  s.file = yaml.file();
   read_camera_section(yaml, s);
-  read_orb_section(yaml, s.orb);
-  read_segmentation_section(yaml, s.segmentation);
   return s;
+}
+
+CameraSettings load_camera_settings(const std::filesystem::path& yaml_file) {
+  return read_camera_settings(YamlReader(yaml_file));
 }
 
 }  // namespace stillslam

@@ -4,7 +4,7 @@
 
 #include "io/temp_dir.h"
 #include "stillslam/core/error.h"
-#include "stillslam/io/settings.h"
+#include "stillslam/settings/settings.h"
 
 namespace stillslam {
 namespace {
@@ -206,9 +206,11 @@ TEST(Settings, OldStyleTumLoadsUnchanged) {
   EXPECT_EQ(s.orb.n_levels, 8);
   EXPECT_EQ(s.orb.ini_th_fast, 20);
   EXPECT_EQ(s.orb.min_th_fast, 7);
-  // No Segmentation keys: defaults.
+  // No Segmentation keys: defaults, with the shipped model.
   EXPECT_TRUE(s.segmentation.enabled);
   EXPECT_EQ(s.segmentation.classes, std::vector<std::string>{"person"});
+  EXPECT_EQ(std::filesystem::path(s.segmentation.model_path),
+            (std::filesystem::absolute(STILLSLAM_SOURCE_DIR) / "models/yolo11n-seg_384x512.onnx").lexically_normal());
 }
 
 TEST(Settings, OldStyleStereoWithRectificationBlocks) {
@@ -320,16 +322,25 @@ TEST(Settings, ErrorsNameFileAndKey) {
       {replaced(tum, "Camera.fx: 517.306408", "Camera.fx: \"abc\""), "Camera.fx", "number"},
       {replaced(tum, "Camera.fps: 30.0", "Camera.type: \"Fisheye\""), "Camera.type", "KannalaBrandt8"},
       {replaced(tum, "ORBextractor.nFeatures: 1000", "ORBextractor.nFeatures: 0"), "ORBextractor.nFeatures",
-       "positive"},
+       "is 0: must be >= 1"},
       {replaced(tum, "ORBextractor.scaleFactor: 1.2", "ORBextractor.scaleFactor: 1.0"),
-       "ORBextractor.scaleFactor", "greater than 1"},
+       "ORBextractor.scaleFactor", "is 1: must be > 1"},
+      {replaced(tum, "ORBextractor.minThFAST: 7", "ORBextractor.minThFAST: 25"), "ORBextractor.minThFAST",
+       "is 25: must be in [1, 20]"},
+      {replaced(tum, "ORBextractor.nLevels: 8", "ORBextractor.nLevels: 2.5"), "ORBextractor.nLevels",
+       "must be an integer"},
       {replaced(tum, "DepthMapFactor: 5000.0", "DepthMapFactor: 0"), "DepthMapFactor", "positive"},
       {replaced(tum, "Camera.bf: 40.0", "Camera.bf: -40.0"), "Camera.bf", "positive"},
       {replaced(tum, "Camera.RGB: 1", "Camera.RGB: 2"), "Camera.RGB", "0 (BGR) or 1"},
       {tum + "Segmentation.scoreTreshold: 0.3\n", "Segmentation.scoreTreshold",
        "known keys: Segmentation.enabled, Segmentation.model, Segmentation.classes, "
        "Segmentation.scoreThreshold"},
-      {tum + "Segmentation.scoreThreshold: 1.5\n", "Segmentation.scoreThreshold", "between 0 and 1"},
+      {tum + "Segmentation.scoreThreshold: 1.5\n", "Segmentation.scoreThreshold", "is 1.5: must be in [0, 1]"},
+      {tum + "Segmentation.maskThreshold: 1\n", "Segmentation.maskThreshold", "is 1: must be in (0, 1)"},
+      {tum + "Segmentation.holdFrames: -1\n", "Segmentation.holdFrames", "is -1: must be >= 0"},
+      {tum + "Segmentation.enabled: 2\n", "Segmentation.enabled", "must be 0 or 1"},
+      {tum + "Segmentation.model: 3\n", "Segmentation.model", "non-empty path"},
+      {tum + "Segmentation: 3\n", "Segmentation", "must be a map"},
       {tum + "Segmentation.classes: \"\"\n", "Segmentation.classes", "empty"},
       {tum + "Segmentation:\n  treads: 2\n", "Segmentation.treads", "known keys"},
       {replaced(kNewKitti, "Stereo.b: 0.53716\n", ""), "Stereo.b", "Rectified"},

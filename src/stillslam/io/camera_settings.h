@@ -1,19 +1,20 @@
 #pragma once
-// Run settings read from an ORB-SLAM3-compatible OpenCV YAML file. Both the
-// old key style (Camera.fx, Camera.bf, ThDepth, DepthMapFactor) and the new
-// one (File.version "1.0", Camera1.*, Camera2.*, Stereo.*, RGBD.*) load
-// unchanged; our own keys live under Segmentation.*.
+// The camera part of an ORB-SLAM3-compatible OpenCV YAML settings file: what
+// the dataset readers need. Both the old key style (Camera.fx, Camera.bf,
+// ThDepth, DepthMapFactor) and the new one (File.version "1.0", Camera1.*,
+// Camera2.*, Stereo.*, RGBD.*) load unchanged. The sections of the other
+// modules (ORB, Segmentation, Tracking, ...) are bound in settings/.
 #include <filesystem>
 #include <optional>
 
 #include "stillslam/core/sensor_frame.h"
-#include "stillslam/features/orb_options.h"
 #include "stillslam/geometry/camera_calibration.h"
-#include "stillslam/segmentation/segmentation_options.h"
 
 namespace stillslam {
 
-struct Settings {
+class YamlReader;
+
+struct CameraSettings {
   std::filesystem::path file;               // where it was read from
   // Left / RGB camera. `distortion` is empty when the file gives none or all
   // zeros; width/height are 0 when the file does not give them.
@@ -25,15 +26,11 @@ struct Settings {
   std::optional<StereoCalibration> stereo;
   double bf = 0;                            // baseline * fx (Camera.bf, or Stereo.b * fx)
   double th_depth = 40;                     // ThDepth / Stereo.ThDepth, in baselines
-  bool stereo_flow_matching = false;        // Stereo.flowMatching: optical flow for unmatched left keypoints
   double depth_map_factor = 5000;           // DepthMapFactor / RGBD.DepthMapFactor
   double fps = 30;                          // Camera.fps
   // Camera.RGB: 1 = the dataset's images are RGB-ordered (TUM), 0 = BGR. The
   // readers always hand out BGR (cv::imread order) so nothing converts on it.
   bool rgb = true;
-  OrbOptions orb;                           // ORBextractor.*
-  SegmentationOptions segmentation;         // Segmentation.*; model path made
-                                            // absolute relative to the file's directory
 
   // Depth (metres) below which a stereo/RGB-D point counts as close:
   // th_depth * baseline, baseline = bf / fx. 0 when there is no baseline.
@@ -41,8 +38,9 @@ struct Settings {
   double baseline() const;  // bf / fx, 0 when unknown
 };
 
-// Reads and validates a settings file; throws stillslam::Error naming the file
-// and the offending key.
-Settings load_settings(const std::filesystem::path& yaml);
+// Reads and validates the camera keys; throws stillslam::Error naming the file
+// and the offending key. Keys of other sections are not looked at.
+CameraSettings read_camera_settings(const YamlReader& yaml);
+CameraSettings load_camera_settings(const std::filesystem::path& yaml);
 
 }  // namespace stillslam

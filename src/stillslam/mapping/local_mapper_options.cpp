@@ -1,0 +1,15 @@
+#include "stillslam/mapping/local_mapper_options.h"
+
+#include "stillslam/core/option_check.h"
+
+namespace stillslam {
+
+void LocalMapperOptions::check() const {
+  point_culling.check();
+  triangulation.check();
+  fusion.check();
+  keyframe_culling.check();
+  bundle_adjustment.check();
+}
+
+}  // namespace stillslam

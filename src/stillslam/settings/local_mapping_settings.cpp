@@ -1,0 +1,30 @@
+#include "stillslam/settings/section_binders.h"
+#include "stillslam/settings/section_keys.h"
+
+namespace stillslam {
+
+void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
+  SectionKeys keys(yaml, "LocalMapping", true);
+  // Local bundle adjustment (Ceres).
+  keys.flag("bundleAdjustment", options.enable_bundle_adjustment);
+  BundleAdjustmentOptions& ba = options.bundle_adjustment;
+  keys.integer("baThreads", ba.num_threads, "BundleAdjustmentOptions.num_threads");
+  keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations");
+  keys.integer("baIterationsAfterOutliers", ba.iterations_after_outliers,
+               "BundleAdjustmentOptions.iterations_after_outliers");
+  // New points, fusion, culling.
+  keys.count("triangulationNeighbours", options.triangulation.neighbours, "PointTriangulationOptions.neighbours");
+  keys.count("fusionNeighbours", options.fusion.neighbours, "FusionOptions.neighbours");
+  keys.count("fusionSecondNeighbours", options.fusion.second_neighbours, "FusionOptions.second_neighbours");
+  keys.number("pointMinFoundRatio", options.point_culling.min_found_ratio, "PointCullingOptions.min_found_ratio");
+  keys.integer("pointMinObservations", options.point_culling.min_observations,
+               "PointCullingOptions.min_observations");
+  keys.flag("keyframeCulling", options.enable_keyframe_culling);
+  keys.number("keyframeRedundancy", options.keyframe_culling.redundancy, "KeyFrameCullingOptions.redundancy");
+  keys.integer("keyframeMinObservers", options.keyframe_culling.min_observers,
+               "KeyFrameCullingOptions.min_observers");
+  keys.reject_unknown_keys();
+  keys.check([&] { options.check(); });
+}
+
+}  // namespace stillslam
