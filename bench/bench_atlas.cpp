@@ -88,8 +88,9 @@ Outcome run(const Args& a, const Settings& settings, const Dataset& dataset, boo
   options.deterministic = !a.threaded;
   options.vocabulary_path = resolve_vocabulary_option(a.vocabulary);
   options.new_map_after_lost_frames = a.new_map_after;
-  options.map_merging = merging;
-  System system(settings, dataset.sensor(), dataset.rectified_stereo(), options);
+  Settings merge_settings = settings;
+  merge_settings.map_merging = merging;
+  System system(merge_settings, dataset.sensor(), dataset.rectified_stereo(), options);
   Outcome out;
   Stopwatch wall;
   std::size_t n = dataset.size();

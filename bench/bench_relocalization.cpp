@@ -234,11 +234,12 @@ Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const 
   options.use_segmentation = a.segmentation;
   options.vocabulary_path = a.vocabulary;
   options.new_map_after_lost_frames = a.new_map_after;
+  Settings settings = seq.settings;
   if (a.no_verification) {
-    options.relocalization.min_found_ratio = 0;
-    options.relocalization.min_supported_cells = 0;
+    settings.relocalization.min_found_ratio = 0;
+    settings.relocalization.min_supported_cells = 0;
   }
-  System system(seq.settings, SensorType::Rgbd, std::nullopt, options);
+  System system(settings, SensorType::Rgbd, std::nullopt, options);
   Outcome out;
   out.frames = static_cast<int>(v.frames.size());
   std::vector<FrameStats> stats;

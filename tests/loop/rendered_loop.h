@@ -52,6 +52,7 @@ inline Settings rendered_loop_settings(const CameraCalibration& camera, double f
   Settings s;
   s.camera = camera;
   s.fps = fps;
+  s.tracking.max_frames_between_keyframes = static_cast<int>(fps);  // as load_settings does
   s.th_depth = 40;
   s.bf = 40.0 / 535.4 * camera.fx;
   s.segmentation.enabled = false;
@@ -112,13 +113,14 @@ inline LoopRun run_loop(const Settings& settings, const std::vector<SensorFrame>
   options.deterministic = o.deterministic;
   options.vocabulary_path = o.vocabulary;
   options.loop_closing = o.loop_closing;
-  options.loop_closer.run_global_bundle_adjustment = o.global_bundle_adjustment;
   options.use_segmentation = false;
+  Settings tuned = settings;
+  tuned.loop_closing.run_global_bundle_adjustment = o.global_bundle_adjustment;
   // ORB-SLAM's 500 keypoints with depth to start are meant for 1000 features.
-  options.tracker.init_min_keypoints = std::min(500, settings.orb.n_features / 2);
+  tuned.tracking.init_min_keypoints = std::min(500, settings.orb.n_features / 2);
   LoopRun out;
   Stopwatch time;
-  System system(settings, SensorType::Rgbd, std::nullopt, options);
+  System system(tuned, SensorType::Rgbd, std::nullopt, options);
   int closed = 0;
   for (const SensorFrame& f : frames) {
     out.frames.push_back(system.process(f));

@@ -91,10 +91,10 @@ TEST(YoloSegmenter, BadOptionsAndUnknownClassesAreErrors) {
   EXPECT_NE(error_of(o).find("'unicorn'"), std::string::npos);
   o = shipped_options();
   o.score_threshold = 1.5f;
-  EXPECT_NE(error_of(o).find("Segmentation.scoreThreshold"), std::string::npos);
+  EXPECT_NE(error_of(o).find("SegmentationOptions.score_threshold"), std::string::npos);
   o = shipped_options();
   o.mask_threshold = 0.0f;
-  EXPECT_NE(error_of(o).find("Segmentation.maskThreshold"), std::string::npos);
+  EXPECT_NE(error_of(o).find("SegmentationOptions.mask_threshold"), std::string::npos);
 }
 
 TEST(YoloSegmenter, ImageTypes) {

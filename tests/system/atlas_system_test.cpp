@@ -57,11 +57,12 @@ struct Outcome {
 Outcome run(const test::SimSequence& seq, bool merging, int new_map_after = kLostFramesForNewMap) {
   SystemOptions options;
   options.deterministic = true;
-  options.tracker.init_min_keypoints = 300;
   options.vocabulary_path = vocabulary_file();
   options.new_map_after_lost_frames = new_map_after;
-  options.map_merging = merging;
-  System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
+  Settings settings = seq.settings;
+  settings.tracking.init_min_keypoints = 300;
+  settings.map_merging = merging;
+  System system(settings, SensorType::Rgbd, seq.stereo, options);
   Outcome out;
   for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
   system.shutdown();

@@ -29,7 +29,6 @@ std::filesystem::path vocabulary_file() {
 SystemOptions options_with(const std::filesystem::path& vocabulary) {
   SystemOptions options;
   options.deterministic = true;
-  options.tracker.init_min_keypoints = 300;
   options.vocabulary_path = vocabulary;
   return options;
 }
@@ -38,6 +37,7 @@ class MapFileEndToEnd : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     sequence_ = new test::SimSequence(test::render_sim_sequence("walking_xyz", kFrames, 320, 240, false));
+    sequence_->settings.tracking.init_min_keypoints = 300;
   }
   static void TearDownTestSuite() {
     delete sequence_;

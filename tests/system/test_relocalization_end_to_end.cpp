@@ -49,9 +49,10 @@ struct Outcome {
 Outcome run(const test::SimSequence& seq, const std::filesystem::path& vocabulary) {
   SystemOptions options;
   options.deterministic = true;
-  options.tracker.init_min_keypoints = 300;
   options.vocabulary_path = vocabulary;
-  System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
+  Settings settings = seq.settings;
+  settings.tracking.init_min_keypoints = 300;
+  System system(settings, SensorType::Rgbd, seq.stereo, options);
   Outcome out;
   for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
   system.shutdown();

@@ -17,8 +17,9 @@ struct RunOutput {
 RunOutput run(const test::SimSequence& seq, SensorType sensor, bool deterministic = true) {
   SystemOptions options;
   options.deterministic = deterministic;
-  options.tracker.init_min_keypoints = 300;
-  System system(seq.settings, sensor, seq.stereo, options);
+  Settings settings = seq.settings;
+  settings.tracking.init_min_keypoints = 300;
+  System system(settings, sensor, seq.stereo, options);
   RunOutput out;
   for (const SensorFrame& f : seq.frames) {
     const FrameStats stats = system.process(f);
@@ -108,7 +109,7 @@ TEST(SystemEndToEnd, SegmenterFactoryReplacesTheModel) {
   int calls = 0;
   SystemOptions options;
   options.deterministic = true;
-  options.tracker.init_min_keypoints = 300;
+  seq.settings.tracking.init_min_keypoints = 300;
   options.segmenter_factory = [&calls] { return std::make_unique<LeftHalfPerson>(&calls); };
   System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
   for (int i = 0; i < 5; ++i) {

@@ -11,7 +11,9 @@ LoopCloser::LoopCloser(Map& map, PlaceRecognizer& recognizer, LoopCloserOptions 
       options_(std::move(options)),
       detector_(std::in_place, recognizer, options_.detector),
       worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous,
-              [this](KeyFramePtr& kf) { process(kf); }) {}
+              [this](KeyFramePtr& kf) { process(kf); }) {
+  options_.check();
+}
 
 LoopCloser::~LoopCloser() { stop(); }
 

@@ -12,7 +12,9 @@ LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
       worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous, [this](KeyFramePtr& kf) {
         abort_ba_ = false;
         process(kf);
-      }) {}
+      }) {
+  options_.check();
+}
 
 LocalMapper::~LocalMapper() { stop(); }
 

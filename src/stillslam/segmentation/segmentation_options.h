@@ -19,7 +19,7 @@ struct SegmentationOptions {
   // Segmentation.threads: the size of OpenCV's process-wide thread pool (the DNN and ORB
   // extraction's parallel_for_), applied once by the application, not by a library call.
   // 1 (default) runs both serially on their calling threads; 0 keeps OpenCV's own setting.
-  // (Until the application does it, YoloSegmenter's constructor still calls cv::setNumThreads.)
+
   int threads = 1;
   // Segmentation.masksForClassesOnly: compute instance masks only for `classes` (SLAM only
   // needs the dynamic ones; saves ~1 ms per other detection). Other detections keep an empty mask.

@@ -22,20 +22,10 @@ std::string shape_string(const cv::Mat& m) {
   return s;
 }
 
-void check_options(const SegmentationOptions& o) {
-  if (!(o.score_threshold >= 0.0f && o.score_threshold <= 1.0f))
-    throw Error("Segmentation.scoreThreshold must be in [0, 1], got " + std::to_string(o.score_threshold));
-  if (!(o.nms_iou_threshold > 0.0f && o.nms_iou_threshold <= 1.0f))
-    throw Error("Segmentation.nmsIouThreshold must be in (0, 1], got " + std::to_string(o.nms_iou_threshold));
-  if (!(o.mask_threshold > 0.0f && o.mask_threshold < 1.0f))
-    throw Error("Segmentation.maskThreshold must be in (0, 1), got " + std::to_string(o.mask_threshold));
-  if (o.threads < 0) throw Error("Segmentation.threads must be >= 0 (0 = OpenCV default), got " + std::to_string(o.threads));
-}
-
 }  // namespace
 
 YoloSegmenter::YoloSegmenter(const SegmentationOptions& options) : options_(options) {
-  check_options(options_);
+  options_.check();
   const std::vector<int> wanted = resolve_class_ids(options_.classes);  // unknown names fail here, early
   const std::string& path = options_.model_path;
   if (path.empty()) throw Error("no segmentation model given: set Segmentation.model or --model to a YOLO-seg .onnx file");

@@ -29,6 +29,8 @@ struct FrameStats {
   std::uint64_t map_id = 0;  // the active map after tracking (atlas)
   bool new_map = false;      // a new map starts with the next frame
   bool merged = false;       // the active map was merged into an older one
+  int loops_closed = 0;      // by loop closing so far (all maps)
+  bool global_bundle_adjustment_running = false;  // after this frame
 };
 
 }  // namespace stillslam

@@ -82,7 +82,10 @@ nlohmann::json to_json(const FrameStats& f) {
             {"total", f.total_ms},
             {"extraction_cpu", f.build.extraction_cpu_ms},
             {"tracking_cpu", f.tracking_cpu_ms},
-            {"total_cpu", f.total_cpu_ms}}}};
+            {"total_cpu", f.total_cpu_ms},
+            {"publish", f.publish_ms}}},
+          {"loops_closed", f.loops_closed},
+          {"global_bundle_adjustment_running", f.global_bundle_adjustment_running}};
 }
 
 nlohmann::json to_json(const TimingSummary& t) {

@@ -69,8 +69,12 @@ std::filesystem::path resolve_vocabulary_option(const std::string& option) {
 
 System::System(const Settings& settings, SensorType sensor, const std::optional<StereoCalibration>& rectified,
                SystemOptions options)
-    : options_(std::move(options)), sensor_(sensor) {
+    : options_(std::move(options)),
+      relocalization_options_(settings.relocalization),
+      merger_options_(settings.map_merger),
+      sensor_(sensor) {
   options_.publish.check();
+  merger_options_.check();
   setup_ = make_camera_setup(settings, sensor, rectified);
   if (options_.localization_only && options_.load_map.empty()) {
     throw Error("localization-only mode needs a map to localize in: pass --load-map FILE (written by "
@@ -83,10 +87,10 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
                   "<repo>/vocab/orb_vocabulary.bin (committed in the repository)");
     }
     vocabulary_ = std::make_shared<const Vocabulary>(Vocabulary::load(options_.vocabulary_path));
-    recognizer_ = std::make_unique<PlaceRecognizer>(vocabulary_, options_.place_recognition);
-    relocalizer_ = Relocalizer(options_.relocalization);
-    if (options_.map_merging && !options_.localization_only) {
-      merge_detector_ = std::make_unique<MergeDetector>(*recognizer_, options_.merger.detector);
+    recognizer_ = std::make_unique<PlaceRecognizer>(vocabulary_, settings.place_recognition);
+    relocalizer_ = Relocalizer(relocalization_options_);
+    if (settings.map_merging && !options_.localization_only) {
+      merge_detector_ = std::make_unique<MergeDetector>(*recognizer_, merger_options_.detector);
     }
   }
   const int fps_frames = settings.fps > 0 ? static_cast<int>(settings.fps) : 30;
@@ -122,7 +126,7 @@ void System::build_pipeline(const Settings& settings) {
   // 5. Loop closing (own thread, with a vocabulary): keyframes from local
   // mapping in; pauses local mapping while it corrects a loop.
   if (recognizer_) {
-    LoopCloserOptions loop = options_.loop_closer;
+    LoopCloserOptions loop = settings.loop_closing;
     loop.threaded = mode == WorkerMode::Threaded;
     loop.detect_loops = loop.detect_loops && options_.loop_closing;
     if (options_.deterministic) loop.global_bundle_adjustment.num_threads = 1;
@@ -133,7 +137,7 @@ void System::build_pipeline(const Settings& settings) {
 
   // 4. Local mapping (own thread): keyframes from tracking in; each finished
   // keyframe goes on to loop closing and to merge detection.
-  LocalMapperOptions mapping = options_.mapper;
+  LocalMapperOptions mapping = settings.local_mapping;
   mapping.threaded = mode == WorkerMode::Threaded;
   if (options_.deterministic) mapping.bundle_adjustment.num_threads = 1;
   if (recognizer_) {
@@ -171,8 +175,7 @@ void System::build_pipeline(const Settings& settings) {
       return relocalizer.relocalize(frame, d.features, candidates).success;
     };
   }
-  TrackerOptions tracking = options_.tracker;
-  if (settings.fps > 0) tracking.max_frames_between_keyframes = static_cast<int>(settings.fps);
+  TrackerOptions tracking = settings.tracking;
   tracking.localization_only = options_.localization_only;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
@@ -288,7 +291,7 @@ bool System::merge_into(Map& target, const LoopDetection& detection) {
     // Local mapping may have culled or fused while it was running: check again.
     if (auto checked = merge_detector_->verify(*detection.query, detection.loop)) {
       Stopwatch time;
-      merged = merge_maps(target, source, *checked, options_.merger);
+      merged = merge_maps(target, source, *checked, merger_options_);
       spdlog::info("atlas: map {} merged into map {} (keyframe {} recognized as {}, {} inliers, {} points fused, "
                    "{:.0f} ms)", source.id(), target.id(), merged->query_id, merged->loop_id, merged->inliers,
                    merged->fused_points, time.elapsed_ms());
@@ -343,7 +346,7 @@ FrameStats System::process(const SensorFrame& input) {
   // map: black or fully masked frames say nothing about the place.
   if (result.state != TrackingState::Lost) {
     lost_frames_ = 0;
-  } else if (stats.build.keypoints_after >= options_.relocalization.min_inliers) {
+  } else if (stats.build.keypoints_after >= relocalization_options_.min_inliers) {
     ++lost_frames_;
   }
   if (new_map_after_lost_frames_ > 0 && lost_frames_ >= new_map_after_lost_frames_) {
@@ -353,6 +356,10 @@ FrameStats System::process(const SensorFrame& input) {
     const std::size_t merges_before = merges_.size();
     detect_and_merge();
     stats.merged = merges_.size() > merges_before;
+  }
+  if (loop_closer_) {
+    stats.loops_closed = loop_closer_->stats().loops_closed;
+    stats.global_bundle_adjustment_running = loop_closer_->global_bundle_adjustment_running();
   }
   stats.total_ms = total.elapsed_ms();
   stats.total_cpu_ms = total_cpu.elapsed_ms();

@@ -65,18 +65,13 @@ struct SystemOptions {
   // With a vocabulary: detect and correct loops. false: keyframes are still
   // indexed, for relocalization only.
   bool loop_closing = true;
-  TrackerOptions tracker;
-  LocalMapperOptions mapper;
-  PlaceRecognizerOptions place_recognition;
-  RelocalizerOptions relocalization;
-  LoopCloserOptions loop_closer;  // threaded / pause callbacks are set by System
+  // The stages' own options (tracking, relocalization, local mapping, loop
+  // closing, place recognition, map merging) come from the Settings
+  // (Tracking.*, LocalMapping.*, LoopClosing.*), not from here.
   // Atlas: consecutive frames without a pose (lost, relocalization failing)
   // after which a new map starts. -1: one second of frames (Camera.fps, else
   // 30) when a vocabulary is loaded, never without one; 0: never.
   int new_map_after_lost_frames = -1;
-  // With a vocabulary: merge maps when a place is recognized across them.
-  bool map_merging = true;
-  MapMergerOptions merger;
   // A map file (map/map_file.h, System::save_map) to start from: its maps
   // replace the empty atlas, their keyframes are indexed for place
   // recognition, and tracking starts lost, relocalizing in the active map
@@ -187,6 +182,9 @@ class System {
   void publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats);
 
   SystemOptions options_;
+  // The stage options of the settings this system was built from.
+  RelocalizerOptions relocalization_options_;
+  MapMergerOptions merger_options_;
   SensorType sensor_;
   std::shared_ptr<const CameraSetup> setup_;
   std::unique_ptr<SegmentationWorker> segmentation_;

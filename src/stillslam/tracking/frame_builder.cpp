@@ -31,7 +31,9 @@ FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType 
       sensor_(sensor),
       extractor_(orb),
       segmentation_(segmentation),
-      stereo_options_(stereo_options) {}
+      stereo_options_(stereo_options) {
+  stereo_options_.check();
+}
 
 Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats) const {
   Stopwatch total;

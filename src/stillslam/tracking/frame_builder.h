@@ -1,8 +1,10 @@
 #pragma once
 // Turns a SensorFrame into a tracking Frame. Order matters and is the point of
-// the design: the colour image goes to the segmentation worker first, ORB runs
-// on the left (and right, in parallel) image meanwhile, then keypoints inside
-// the dynamic mask are DROPPED before stereo/depth association, so no later
+// the design: the colour image goes to the segmentation worker first; for
+// stereo, ORB on the right image runs meanwhile on another thread; the left
+// image WAITS for the dynamic mask and is extracted outside it (its whole
+// feature budget goes to the static part of the view), and any keypoint left
+// inside the mask is dropped before stereo/depth association, so no later
 // stage ever sees a feature on a moving object. Without a worker the pipeline
 // is identical minus the mask.
 #include <cstdint>
