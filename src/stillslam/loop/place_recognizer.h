@@ -73,6 +73,10 @@ class PlaceRecognizer {
   // max_loop_candidates; 0 = all).
   std::vector<PlaceCandidate> loop_candidates(const KeyFrame& keyframe, const std::vector<KeyframeId>& covisible,
                                               std::optional<std::size_t> max_results = std::nullopt) const;
+  // The same for keyframe `self` described by `bow` (no map access).
+  std::vector<PlaceCandidate> loop_candidates(KeyframeId self, const BowVector& bow,
+                                              const std::vector<KeyframeId>& covisible,
+                                              std::optional<std::size_t> max_results = std::nullopt) const;
   // The threshold loop_candidates uses.
   double min_covisible_score(const BowVector& bow, const std::vector<KeyframeId>& covisible) const;
 
