@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
+#include <mutex>
+#include <thread>
 
 #include "loop/loop_scene.h"
 #include "stillslam/loop/loop_detector.h"
@@ -106,6 +109,40 @@ TEST_F(LoopSnapshotSideBySide, TemporalConsistencyGivesDetectsDetection) {
   LoopDetectorOptions options;
   options.confirmation_neighbours = 0;
   run(options, 34, false);
+}
+
+// As the loop closer will run it: verify() on another thread while this one
+// keeps moving the map under the lock (a ThreadSanitizer build reports any
+// read of live map state); the detection is the one detect() found before.
+TEST_F(LoopSnapshotTest, VerifyOnAnotherThreadWhileTheMapChanges) {
+  LoopDetector reference(recognizer_), stepwise(recognizer_);
+  std::optional<LoopDetection> expected;
+  std::optional<LoopSnapshot> snapshot;
+  int i = 0;
+  for (; i < kKeyframes && !expected; ++i) {
+    expected = reference.detect(scene_.map(), *kf(i));
+    snapshot = stepwise.prepare(scene_.map(), *kf(i));
+    if (!expected) recognizer_.add(*kf(i));
+  }
+  ASSERT_TRUE(expected && snapshot);
+  std::atomic<bool> done{false};
+  std::optional<LoopDetection> got;
+  std::thread verifier([&] {
+    got = stepwise.verify(*snapshot);
+    done = true;
+  });
+  int rounds = 0;
+  for (; !done || rounds == 0; ++rounds) {
+    std::lock_guard<std::mutex> lock(scene_.map().update_mutex());
+    disturb_map()();  // moves everything and back
+  }
+  verifier.join();
+  ASSERT_TRUE(got);
+  expect_same(*expected, *got);
+  std::lock_guard<std::mutex> lock(scene_.map().update_mutex());
+  const auto rechecked = stepwise.recheck(scene_.map(), *got);
+  ASSERT_TRUE(rechecked);
+  expect_same(*expected, *rechecked);
 }
 
 TEST_F(LoopSnapshotTest, SnapshotHoldsTheCandidatesToVerify) {
