@@ -121,5 +121,25 @@ TEST(LoopCorrectionSteps, AKeyframeCreatedMeanwhileMovesWithItsParent) {
   EXPECT_GT(std::abs(error_after - error_before), 1e-4);
 }
 
+// Tracking created a keyframe that local mapping (paused for the correction)
+// has not connected yet: no parent, so it follows the query.
+TEST(LoopCorrectionSteps, AKeyframeWithoutParentYetFollowsTheQuery) {
+  DetectedLoop b;
+  ASSERT_TRUE(b.detection);
+  LoopEdges edges;
+  const LoopCorrectionProblem problem = begin_loop_correction(b.scene.map(), *b.detection, edges);
+  const KeyFrame& query = *b.detection->query;
+  Frame frame = b.scene.make_frame(1000, b.scene.true_T_world_cam(b.next_keyframe));
+  frame.set_pose(query.T_cam_world());  // where tracking would put it: at the (corrected) query
+  const KeyFramePtr kf = b.scene.map().create_keyframe(frame);
+  ASSERT_EQ(kf->parent(), nullptr);
+  const Eigen::Isometry3d query_before = query.T_cam_world();
+  const LoopCorrectionStats stats =
+      finish_loop_correction(b.scene.map(), problem, solve_loop_correction(problem), edges);
+  EXPECT_EQ(stats.propagated_keyframes, 1);
+  EXPECT_GT((query.T_cam_world().matrix() - query_before.matrix()).norm(), 1e-4);  // the graph moved the query
+  EXPECT_LT((kf->T_cam_world().matrix() - query.T_cam_world().matrix()).norm(), 1e-9);
+}
+
 }  // namespace
 }  // namespace stillslam

@@ -170,13 +170,15 @@ LoopCorrectionStats finish_loop_correction(Map& map, const LoopCorrectionProblem
   for (std::size_t k = 0; k < problem.keyframes.size(); ++k) {
     if (!problem.keyframes[k]->is_bad()) problem.keyframes[k]->set_pose(T_world_node[k].inverse());
   }
-  // Created since begin: with their spanning-tree parent (parents first; a
-  // keyframe without a parent yet keeps its pose).
+  // Created since begin: with their spanning-tree parent (parents first). A
+  // keyframe local mapping has not connected yet has no parent: tracking made
+  // it next to the query, so it follows the query.
   std::unordered_set<const KeyFrame*> pending(created.begin(), created.end());
+  KeyFrame* query = problem.connected.front().get();
   std::function<void(KeyFrame*)> propagate = [&](KeyFrame* kf) {
     if (!pending.erase(kf)) return;
-    KeyFrame* parent = kf->parent();
-    const auto parent_before = parent ? T_cam_world_before.find(parent->id()) : T_cam_world_before.end();
+    KeyFrame* parent = kf->parent() ? kf->parent() : query;
+    const auto parent_before = T_cam_world_before.find(parent->id());
     if (parent_before == T_cam_world_before.end()) return;
     propagate(parent);
     const Eigen::Isometry3d T_kf_parent = kf->T_cam_world() * parent_before->second.inverse();

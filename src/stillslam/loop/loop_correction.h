@@ -13,7 +13,8 @@
 //   solve   (no lock): the pose-graph optimization on that copy;
 //   finish  (lock): optimized poses written back (keyframes culled meanwhile
 //           left to their spanning-tree parent), keyframes created meanwhile
-//           moved with their spanning-tree parent's correction, every point
+//           moved with their spanning-tree parent's correction (the query's
+//           when local mapping has not given them a parent yet), every point
 //           with its reference keyframe's.
 // correct_loop() runs the three in a row. The caller holds the map's update
 // mutex where stated and has stopped anything else that writes poses of
