@@ -1,5 +1,7 @@
 #include "stillslam/loop/loop_snapshot.h"
 
+#include <algorithm>
+
 namespace stillslam {
 
 LoopSnapshotBuilder::LoopSnapshotBuilder(const KeyFrame& query, std::shared_ptr<const BowDescription> query_words,
