@@ -83,13 +83,13 @@ LoopCorrectionProblem begin_loop_correction(Map& map, const LoopDetection& detec
   }
   const Eigen::Isometry3d T_query_world_old = query.T_cam_world();
   PoseById uncorrected;
-  std::unordered_map<MapPoint*, KeyFrame*> corrected_by;
+  auto& corrected_by = problem.corrected_by;
   for (KeyFrame* k : connected) {
     const Eigen::Isometry3d T_world_k_old = k->T_world_cam();
     const Eigen::Isometry3d T_world_k_new = detection.T_world_query_corrected * T_query_world_old * T_world_k_old;
     uncorrected.emplace(k->id(), T_world_k_old);
     for (const MapPointPtr& mp : k->map_points()) {
-      if (!mp || mp->is_bad() || !corrected_by.emplace(mp.get(), k).second) continue;
+      if (!mp || mp->is_bad() || !corrected_by.emplace(mp, k).second) continue;
       mp->set_position(T_world_k_new * (T_world_k_old.inverse() * mp->position()));
     }
     k->set_pose(T_world_k_new.inverse());
@@ -141,9 +141,6 @@ LoopCorrectionProblem begin_loop_correction(Map& map, const LoopDetection& detec
   // 4. The essential graph, and what finish needs to move the points.
   for (const auto& kf : map.all_keyframes()) problem.T_cam_world_before.emplace(kf->id(), kf->T_cam_world_resolved());
   build_essential_graph(map, *detection.loop, uncorrected, loop_links, loop_edges, options, problem);
-  for (const auto& [mp, k] : corrected_by) {
-    problem.corrected_by.emplace(mp->shared_from_this(), k->shared_from_this());
-  }
   for (KeyFrame* k : connected) problem.connected.push_back(k->shared_from_this());
   problem.query_id = query.id();
   problem.loop_id = detection.loop->id();
@@ -194,7 +191,7 @@ LoopCorrectionStats finish_loop_correction(Map& map, const LoopCorrectionProblem
   for (const MapPointPtr& mp : map.map_points()) {
     if (mp->is_bad()) continue;
     const auto c = problem.corrected_by.find(mp);
-    const KeyFrame* ref = c != problem.corrected_by.end() ? c->second.get() : nullptr;
+    const KeyFrame* ref = c != problem.corrected_by.end() ? c->second : nullptr;
     if (!ref) {
       const auto it = by_id.find(mp->first_keyframe_id());
       if (it == by_id.end()) continue;

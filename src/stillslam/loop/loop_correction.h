@@ -64,8 +64,9 @@ struct LoopCorrectionProblem {
   // optimization, by id: points move from it to the optimized pose.
   std::unordered_map<std::uint64_t, Eigen::Isometry3d> T_cam_world_before;
   // Points moved with the query's neighbourhood: the keyframe that moved
-  // them is their reference in finish (others use their first keyframe).
-  std::unordered_map<MapPointPtr, KeyFramePtr> corrected_by;
+  // them (one of `connected`) is their reference in finish (others use their
+  // first keyframe).
+  std::unordered_map<MapPointPtr, KeyFrame*> corrected_by;
   std::vector<KeyFramePtr> connected;  // the query's corrected neighbourhood, query first
   std::uint64_t query_id = 0, loop_id = 0;
   LoopCorrectionStats stats;
