@@ -5,7 +5,8 @@
 // Used by relocalization (frame -> keyframes) and loop detection (keyframe ->
 // older keyframes). Thread-safe: one mutex guards the side table; the
 // database has its own lock. Knows keyframes only through their descriptors,
-// so callers hold the map lock when they read a KeyFrame for add().
+// which never change after construction (map/keyframe.h): no call needs the
+// map lock.
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -47,11 +48,11 @@ class PlaceRecognizer {
 
   // Words and direct index of an N x 32 descriptor matrix (no state touched).
   BowDescription describe(const cv::Mat& descriptors) const;
-  // The keyframe's descriptors as one matrix (caller holds the map lock).
+  // The keyframe's descriptors as one matrix.
   static cv::Mat descriptors_of(const KeyFrame& keyframe);
 
-  // Describes the keyframe (caller holds the map lock) and indexes it;
-  // replaces an earlier entry of the same id. Returns the description.
+  // Describes the keyframe and indexes it; replaces an earlier entry of the
+  // same id. Returns the description.
   std::shared_ptr<const BowDescription> add(const KeyFrame& keyframe);
   // Forgets a keyframe (culled); no-op for unknown ids.
   void erase(KeyframeId id);
