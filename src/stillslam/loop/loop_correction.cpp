@@ -1,38 +1,35 @@
 #include "stillslam/loop/loop_correction.h"
 
+#include <functional>
 #include <map>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "stillslam/core/option_check.h"
 #include "stillslam/map/fuse.h"
-#include "stillslam/optimize/pose_graph.h"
 
 namespace stillslam {
 
 namespace {
 
 using PoseById = std::unordered_map<std::uint64_t, Eigen::Isometry3d>;
+using LoopLinks = std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess>;
 
 // Essential graph over the active keyframes. Non-loop edges measure the
 // relative poses from before the correction (the drifted odometry the
 // optimization must bend), loop edges from after it.
-void optimize_essential_graph(Map& map, const KeyFrame& loop_kf, const PoseById& uncorrected,
-                              const std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess>& loop_links,
-                              const LoopEdges& loop_edges, const LoopCorrectionOptions& options,
-                              LoopCorrectionStats& stats) {
-  const std::vector<KeyFramePtr> keyframes = map.keyframes();
+void build_essential_graph(const Map& map, const KeyFrame& loop_kf, const PoseById& uncorrected,
+                           const LoopLinks& loop_links, const LoopEdges& loop_edges,
+                           const LoopCorrectionOptions& options, LoopCorrectionProblem& problem) {
+  problem.keyframes = map.keyframes();
   std::unordered_map<const KeyFrame*, std::size_t> node;
-  std::vector<Eigen::Isometry3d> T_world_node;
-  for (const auto& kf : keyframes) {
-    node.emplace(kf.get(), T_world_node.size());
-    T_world_node.push_back(kf->T_world_cam());
+  for (const auto& kf : problem.keyframes) {
+    node.emplace(kf.get(), problem.T_world_node.size());
+    problem.T_world_node.push_back(kf->T_world_cam());
   }
   auto before = [&](const KeyFrame* kf) {
     const auto it = uncorrected.find(kf->id());
     return it != uncorrected.end() ? it->second : kf->T_world_cam();
   };
-  std::vector<PoseGraphEdge> edges;
   std::set<std::pair<std::size_t, std::size_t>> added;
   auto add_edge = [&](const KeyFrame* a, const KeyFrame* b, bool corrected) {
     const auto ia = node.find(a), ib = node.find(b);
@@ -43,12 +40,12 @@ void optimize_essential_graph(Map& map, const KeyFrame& loop_kf, const PoseById&
     e.from = ia->second;
     e.to = ib->second;
     e.T_from_to = corrected ? a->T_world_cam().inverse() * b->T_world_cam() : before(a).inverse() * before(b);
-    edges.push_back(e);
+    problem.edges.push_back(e);
   };
   for (const auto& [kf, links] : loop_links) {
     for (KeyFrame* other : links) add_edge(kf, other, true);
   }
-  for (const auto& kf : keyframes) {
+  for (const auto& kf : problem.keyframes) {
     if (kf->parent() && !kf->parent()->is_bad()) add_edge(kf->parent(), kf.get(), false);
     for (const auto& [a, b] : loop_edges) {
       if (a != kf->id()) continue;
@@ -58,19 +55,24 @@ void optimize_essential_graph(Map& map, const KeyFrame& loop_kf, const PoseById&
       if (!n->is_bad()) add_edge(kf.get(), n, false);
     }
   }
-  stats.graph_nodes = static_cast<int>(T_world_node.size());
-  stats.graph_edges = static_cast<int>(edges.size());
-  const std::vector<std::size_t> fixed{node.at(&loop_kf)};
-  const std::vector<Eigen::Isometry3d> optimized =
-      optimize_pose_graph(std::move(T_world_node), edges, fixed, options.pose_graph_iterations);
-  for (std::size_t k = 0; k < keyframes.size(); ++k) keyframes[k]->set_pose(optimized[k].inverse());
+  problem.stats.graph_nodes = static_cast<int>(problem.T_world_node.size());
+  problem.stats.graph_edges = static_cast<int>(problem.edges.size());
+  problem.fixed = {node.at(&loop_kf)};
+  problem.iterations = options.pose_graph_iterations;
 }
 
 }  // namespace
 
 LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopEdges& loop_edges,
                                  const LoopCorrectionOptions& options) {
-  LoopCorrectionStats stats;
+  const LoopCorrectionProblem problem = begin_loop_correction(map, detection, loop_edges, options);
+  return finish_loop_correction(map, problem, solve_loop_correction(problem), loop_edges);
+}
+
+LoopCorrectionProblem begin_loop_correction(Map& map, const LoopDetection& detection, const LoopEdges& loop_edges,
+                                            const LoopCorrectionOptions& options) {
+  LoopCorrectionProblem problem;
+  LoopCorrectionStats& stats = problem.stats;
   KeyFrame& query = *detection.query;
   const ScalePyramid& pyramid = query.setup().pyramid;
   query.update_connections();
@@ -82,13 +84,13 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
   }
   const Eigen::Isometry3d T_query_world_old = query.T_cam_world();
   PoseById uncorrected;
-  std::unordered_map<MapPoint*, KeyFrame*> corrected_by;
+  auto& corrected_by = problem.corrected_by;
   for (KeyFrame* k : connected) {
     const Eigen::Isometry3d T_world_k_old = k->T_world_cam();
     const Eigen::Isometry3d T_world_k_new = detection.T_world_query_corrected * T_query_world_old * T_world_k_old;
     uncorrected.emplace(k->id(), T_world_k_old);
     for (const MapPointPtr& mp : k->map_points()) {
-      if (!mp || mp->is_bad() || !corrected_by.emplace(mp.get(), k).second) continue;
+      if (!mp || mp->is_bad() || !corrected_by.emplace(mp, k).second) continue;
       mp->set_position(T_world_k_new * (T_world_k_old.inverse() * mp->position()));
     }
     k->set_pose(T_world_k_new.inverse());
@@ -99,7 +101,7 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
   stats.corrected_keyframes = static_cast<int>(connected.size());
 
   // Neighbours before fusion, to find the links the loop creates.
-  std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess> previous;
+  LoopLinks previous;
   for (KeyFrame* k : connected) {
     const auto c = k->covisibles();
     previous[k] = std::set<KeyFrame*, KeyFrameIdLess>(c.begin(), c.end());
@@ -126,7 +128,7 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
   // 3. New links = neighbours after fusion that were neither neighbours nor
   // part of the corrected neighbourhood.
   const std::unordered_set<const KeyFrame*> connected_set(connected.begin(), connected.end());
-  std::map<KeyFrame*, std::set<KeyFrame*, KeyFrameIdLess>, KeyFrameIdLess> loop_links;
+  LoopLinks loop_links;
   for (KeyFrame* k : connected) {
     k->update_connections();
     for (KeyFrame* n : k->covisibles()) {
@@ -137,16 +139,60 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
   }
   loop_links[&query].insert(detection.loop.get());
 
-  // 4. Essential graph; every point follows its reference keyframe.
-  std::unordered_map<std::uint64_t, Eigen::Isometry3d> T_cam_world_before;
-  for (const auto& kf : map.all_keyframes()) T_cam_world_before.emplace(kf->id(), kf->T_cam_world_resolved());
-  optimize_essential_graph(map, *detection.loop, uncorrected, loop_links, loop_edges, options, stats);
+  // 4. The essential graph, and what finish needs to move the points.
+  for (const auto& kf : map.all_keyframes()) problem.T_cam_world_before.emplace(kf->id(), kf->T_cam_world_resolved());
+  build_essential_graph(map, *detection.loop, uncorrected, loop_links, loop_edges, options, problem);
+  for (KeyFrame* k : connected) problem.connected.push_back(k->shared_from_this());
+  problem.query_id = query.id();
+  problem.loop_id = detection.loop->id();
+  return problem;
+}
+
+std::vector<Eigen::Isometry3d> solve_loop_correction(const LoopCorrectionProblem& problem) {
+  return optimize_pose_graph(problem.T_world_node, problem.edges, problem.fixed, problem.iterations);
+}
+
+LoopCorrectionStats finish_loop_correction(Map& map, const LoopCorrectionProblem& problem,
+                                           const std::vector<Eigen::Isometry3d>& T_world_node, LoopEdges& loop_edges) {
+  LoopCorrectionStats stats = problem.stats;
+  // Keyframes created since begin have not moved: their pose now is their
+  // pose before.
+  PoseById T_cam_world_before = problem.T_cam_world_before;
+  std::vector<KeyFrame*> created;
+  for (const auto& kf : map.all_keyframes()) {
+    if (T_cam_world_before.emplace(kf->id(), kf->T_cam_world_resolved()).second && !kf->is_bad()) {
+      created.push_back(kf.get());
+    }
+  }
+  // Culled since begin: the parent's new pose moves them.
+  for (std::size_t k = 0; k < problem.keyframes.size(); ++k) {
+    if (!problem.keyframes[k]->is_bad()) problem.keyframes[k]->set_pose(T_world_node[k].inverse());
+  }
+  // Created since begin: with their spanning-tree parent (parents first). A
+  // keyframe local mapping has not connected yet has no parent: tracking made
+  // it next to the query, so it follows the query.
+  std::unordered_set<const KeyFrame*> pending(created.begin(), created.end());
+  KeyFrame* query = problem.connected.front().get();
+  std::function<void(KeyFrame*)> propagate = [&](KeyFrame* kf) {
+    if (!pending.erase(kf)) return;
+    KeyFrame* parent = kf->parent() ? kf->parent() : query;
+    const auto parent_before = T_cam_world_before.find(parent->id());
+    if (parent_before == T_cam_world_before.end()) return;
+    propagate(parent);
+    const Eigen::Isometry3d T_kf_parent = kf->T_cam_world() * parent_before->second.inverse();
+    kf->set_pose(T_kf_parent * parent->T_cam_world_resolved());
+    ++stats.propagated_keyframes;
+  };
+  for (KeyFrame* kf : created) propagate(kf);
+
+  // Every point follows its reference keyframe.
+  const ScalePyramid& pyramid = problem.connected.front()->setup().pyramid;  // the query's
   std::unordered_map<std::uint64_t, const KeyFrame*> by_id;
   for (const auto& kf : map.all_keyframes()) by_id.emplace(kf->id(), kf.get());
   for (const MapPointPtr& mp : map.map_points()) {
     if (mp->is_bad()) continue;
-    const auto c = corrected_by.find(mp.get());
-    const KeyFrame* ref = c != corrected_by.end() ? c->second : nullptr;
+    const auto c = problem.corrected_by.find(mp);
+    const KeyFrame* ref = c != problem.corrected_by.end() ? c->second : nullptr;
     if (!ref) {
       const auto it = by_id.find(mp->first_keyframe_id());
       if (it == by_id.end()) continue;
@@ -156,9 +202,11 @@ LoopCorrectionStats correct_loop(Map& map, const LoopDetection& detection, LoopE
     mp->set_position(T_world_ref_new * (T_cam_world_before.at(ref->id()) * mp->position()));
     mp->update_normal_and_depth(pyramid);
   }
-  for (KeyFrame* k : connected) k->update_connections();
-  loop_edges.insert({query.id(), detection.loop->id()});
-  loop_edges.insert({detection.loop->id(), query.id()});
+  for (const KeyFramePtr& k : problem.connected) {
+    if (!k->is_bad()) k->update_connections();
+  }
+  loop_edges.insert({problem.query_id, problem.loop_id});
+  loop_edges.insert({problem.loop_id, problem.query_id});
   return stats;
 }
 

@@ -3,60 +3,13 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <map>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "stillslam/core/option_check.h"
-#include "stillslam/features/descriptor.h"
-#include "stillslam/map/matching_thresholds.h"
-#include "stillslam/optimize/pose_optimizer.h"
-#include "stillslam/map/keyframe_point_features.h"
-#include "stillslam/place/direct_index_matcher.h"
+#include "stillslam/loop/loop_verification.h"
 
 namespace stillslam {
-
-namespace {
-
-// A keypoint in its camera frame: from its depth, else from its map point.
-std::optional<Eigen::Vector3d> camera_point(const KeyFrame& kf, std::size_t i) {
-  if (kf.depth(i) > 0) {
-    const cv::Point2f& pt = kf.keypoint(i).pt;
-    return kf.setup().camera.unproject(Eigen::Vector2d(pt.x, pt.y), kf.depth(i));
-  }
-  const MapPointPtr& mp = kf.map_point(i);
-  if (!mp || mp->is_bad()) return std::nullopt;
-  return kf.T_cam_world() * mp->position();
-}
-
-// Best keypoint of `kf` for a map point projected with T_cam_world, or -1.
-std::ptrdiff_t match_projection(const KeyFrame& kf, const Eigen::Isometry3d& T_cam_world, const MapPoint& mp,
-                                float window) {
-  const CameraSetup& setup = kf.setup();
-  const Eigen::Vector3d p = T_cam_world * mp.position();
-  if (p.z() <= 0) return -1;
-  const Eigen::Vector2d uv = setup.camera.project(p);
-  if (!setup.camera.in_image(uv)) return -1;
-  const Eigen::Vector3d ray = mp.position() - T_cam_world.inverse().translation();
-  const double distance = ray.norm();
-  if (distance < mp.min_distance() || distance > mp.max_distance()) return -1;
-  if (ray.dot(mp.normal()) < 0.5 * distance) return -1;
-  const int level = mp.predict_level(distance, setup.pyramid);
-  const float radius = window * setup.pyramid.scale[static_cast<std::size_t>(level)];
-  int best_distance = kDescriptorDistanceLow + 1;
-  std::ptrdiff_t best = -1;
-  for (std::size_t j :
-       kf.features_in_area(static_cast<float>(uv.x()), static_cast<float>(uv.y()), radius, level - 1, level + 1)) {
-    const int d = descriptor_distance(mp.descriptor(), kf.descriptor(j));
-    if (d < best_distance) {
-      best_distance = d;
-      best = static_cast<std::ptrdiff_t>(j);
-    }
-  }
-  return best;
-}
-
-}  // namespace
 
 LoopDetector::LoopDetector(const PlaceRecognizer& recognizer, LoopDetectorOptions options)
     : recognizer_(recognizer), options_(options) {
@@ -69,10 +22,22 @@ void LoopDetector::loop_closed(std::uint64_t query_id) {
   candidate_counts_.clear();
 }
 
+std::shared_ptr<const BowDescription> LoopDetector::words_of(const KeyFrame& query) const {
+  auto words = recognizer_.description(query.id());
+  if (!words) {
+    words = std::make_shared<const BowDescription>(recognizer_.describe(PlaceRecognizer::descriptors_of(query)));
+  }
+  return words;
+}
+
 std::vector<KeyFramePtr> LoopDetector::candidates(const Map& map, const KeyFrame& query) const {
+  return candidates(map, query, words_of(query)->bow);
+}
+
+std::vector<KeyFramePtr> LoopDetector::candidates(const Map& map, const KeyFrame& query, const BowVector& bow) const {
   std::vector<KeyframeId> covisible;
   for (KeyFrame* k : query.covisibles()) covisible.push_back(k->id());
-  const std::vector<PlaceCandidate> found = recognizer_.loop_candidates(query, covisible, 0);
+  const std::vector<PlaceCandidate> found = recognizer_.loop_candidates(query.id(), bow, covisible, 0);
   std::unordered_map<KeyframeId, double> score;
   for (const auto& c : found) score.emplace(c.id, c.score);
 
@@ -152,12 +117,21 @@ std::vector<KeyFramePtr> LoopDetector::consistent_candidates(const std::vector<K
 }
 
 std::optional<LoopDetection> LoopDetector::detect(const Map& map, const KeyFrame& query) {
+  const std::optional<LoopSnapshot> snapshot = prepare(map, query);
+  if (!snapshot) return std::nullopt;
+  std::optional<LoopDetection> detection = verify(*snapshot);
+  if (!detection) return std::nullopt;
+  return recheck(map, std::move(*detection));
+}
+
+std::optional<LoopSnapshot> LoopDetector::prepare(const Map& map, const KeyFrame& query) {
   const auto enough_keyframes = static_cast<std::size_t>(std::max(options_.min_keyframes_between_loops, 0));
   if (map.num_keyframes() <= enough_keyframes ||
       (last_loop_id_ && query.id() < *last_loop_id_ + enough_keyframes)) {
     return std::nullopt;
   }
-  const std::vector<KeyFramePtr> found = candidates(map, query);
+  std::shared_ptr<const BowDescription> words = words_of(query);
+  const std::vector<KeyFramePtr> found = candidates(map, query, words->bow);
   if (found.empty()) {
     spdlog::debug("loop detection, keyframe {}: no BoW candidate", query.id());
     groups_.clear();
@@ -166,162 +140,56 @@ std::optional<LoopDetection> LoopDetector::detect(const Map& map, const KeyFrame
   const std::vector<KeyFramePtr> consistent = consistent_candidates(found);
   spdlog::debug("loop detection, keyframe {}: {} BoW candidates (best {}), {} consistent", query.id(), found.size(),
                 found.front()->id(), consistent.size());
-  if (!consistent.empty()) {
-    if (auto d = verify(query, consistent)) return d;
+  LoopSnapshotBuilder builder(query, std::move(words), options_.confirmation_neighbours);
+  for (const KeyFramePtr& c : consistent) builder.add_candidate(c, recognizer_.description(c->id()));
+  if (options_.confirmation_neighbours > 0) {
+    for (const KeyFramePtr& c : found) {
+      if (std::find(consistent.begin(), consistent.end(), c) != consistent.end()) continue;
+      const auto count = candidate_counts_.find(c->id());
+      const int needed = options_.consistency_threshold - (count != candidate_counts_.end() ? count->second : 1);
+      builder.add_candidate(c, recognizer_.description(c->id()), true, needed);
+    }
   }
-  if (options_.confirmation_neighbours == 0) return std::nullopt;
-  std::vector<KeyFramePtr> others;
-  for (const KeyFramePtr& c : found) {
-    if (std::find(consistent.begin(), consistent.end(), c) == consistent.end()) others.push_back(c);
-  }
-  return verify_confirmed(query, others);
+  if (builder.empty()) return std::nullopt;
+  return builder.take();
 }
 
-std::optional<LoopDetection> LoopDetector::verify_confirmed(const KeyFrame& query,
-                                                            const std::vector<KeyFramePtr>& candidates) const {
-  for (const KeyFramePtr& candidate : candidates) {
-    std::optional<LoopDetection> d = verify(query, {candidate});
+std::optional<LoopDetection> LoopDetector::verify(const LoopSnapshot& snapshot) const {
+  for (const LoopCandidateCopy& candidate : snapshot.candidates) {
+    std::optional<LoopDetection> d = verify_candidate(snapshot, candidate, options_);
     if (!d) continue;
-    const auto count = candidate_counts_.find(candidate->id());
-    const int needed = options_.consistency_threshold - (count != candidate_counts_.end() ? count->second : 1);
-    d->confirmations = count_confirmations(*d);
-    spdlog::debug("loop candidate {} for {}: confirmed by {} covisible keyframes (need {})", candidate->id(),
-                  query.id(), d->confirmations, needed);
-    if (d->confirmations >= needed) return d;
+    if (!candidate.needs_confirmation) return d;
+    d->confirmations = count_confirmations(snapshot, candidate, *d, options_);
+    spdlog::debug("loop candidate {} for {}: confirmed by {} covisible keyframes (need {})", d->loop->id(),
+                  d->query->id(), d->confirmations, candidate.needed_confirmations);
+    if (d->confirmations >= candidate.needed_confirmations) return d;
   }
   return std::nullopt;
-}
-
-int LoopDetector::count_confirmations(const LoopDetection& detection) const {
-  // World correction of the drifted side: T_world_new = C * T_world_old.
-  const Eigen::Isometry3d C = detection.T_world_query_corrected * detection.query->T_cam_world();
-  int confirmed = 0;
-  for (KeyFrame* k : detection.query->best_covisibles(options_.confirmation_neighbours)) {
-    if (k->is_bad() || k == detection.loop.get()) continue;
-    const Eigen::Isometry3d T_cam_world = k->T_cam_world() * C.inverse();
-    std::vector<bool> taken(k->size(), false);
-    int matches = 0;
-    for (const MapPointPtr& mp : detection.loop_points) {
-      const std::ptrdiff_t j = match_projection(*k, T_cam_world, *mp, options_.projection_window);
-      if (j < 0 || taken[static_cast<std::size_t>(j)]) continue;
-      taken[static_cast<std::size_t>(j)] = true;
-      ++matches;
-    }
-    if (matches >= options_.min_confirmation_matches) ++confirmed;
-  }
-  return confirmed;
 }
 
 std::optional<LoopDetection> LoopDetector::verify(const KeyFrame& query,
                                                   const std::vector<KeyFramePtr>& candidates) const {
-  auto words = recognizer_.description(query.id());
-  if (!words) {
-    words = std::make_shared<const BowDescription>(recognizer_.describe(PlaceRecognizer::descriptors_of(query)));
+  LoopSnapshotBuilder builder(query, words_of(query), 0);
+  for (const KeyFramePtr& c : candidates) {
+    if (c) builder.add_candidate(c, recognizer_.description(c->id()));
   }
-  for (const KeyFramePtr& candidate : candidates) {
-    if (auto d = verify_one(query, *words, candidate)) return d;
-  }
-  return std::nullopt;
+  return verify(builder.take());
 }
 
-std::optional<LoopDetection> LoopDetector::verify_one(const KeyFrame& query, const BowDescription& query_words,
-                                                      const KeyFramePtr& candidate) const {
-  if (!candidate || candidate->is_bad()) return std::nullopt;
-  const auto candidate_words = recognizer_.description(candidate->id());
-  if (!candidate_words) return std::nullopt;
-  const KeyframePointFeatures q = keyframe_point_features(query, query_words.features);
-  const KeyframePointFeatures c = keyframe_point_features(*candidate, candidate_words->features);
-  if (q.slot.empty() || c.slot.empty()) return std::nullopt;
-  const std::vector<cv::DMatch> matches =
-      match_by_direct_index(q.descriptors, q.groups, c.descriptors, c.groups, options_.bow_matching);
-  if (static_cast<int>(matches.size()) < options_.min_bow_matches) {
-    spdlog::debug("loop candidate {} for {}: {} BoW matches", candidate->id(), query.id(), matches.size());
+std::optional<LoopDetection> LoopDetector::recheck(const Map& map, LoopDetection detection) const {
+  if (!detection.query || !detection.loop || detection.query->is_bad() || detection.loop->is_bad() ||
+      map.keyframe(detection.loop->id()) != detection.loop) {
     return std::nullopt;
   }
-
-  // SE3 between the two cameras from their own measurements.
-  std::vector<Eigen::Vector3d> src, dst;
-  std::vector<std::size_t> src_index;
-  std::vector<MapPointPtr> dst_point;
-  for (const cv::DMatch& m : matches) {
-    const std::size_t qi = q.slot[static_cast<std::size_t>(m.queryIdx)];
-    const std::size_t ci = c.slot[static_cast<std::size_t>(m.trainIdx)];
-    const auto pq = camera_point(query, qi);
-    const auto pc = camera_point(*candidate, ci);
-    if (!pq || !pc) continue;
-    src.push_back(*pq);
-    dst.push_back(candidate->T_world_cam() * *pc);
-    src_index.push_back(qi);
-    dst_point.push_back(candidate->map_point(ci));
+  int kept = 0;
+  for (MapPointPtr& mp : detection.matched_points) {
+    if (mp && mp->is_bad()) mp.reset();
+    if (mp) ++kept;
   }
-  if (static_cast<int>(src.size()) < options_.min_bow_matches) return std::nullopt;
-  const AlignmentResult a = align_ransac(src, dst, options_.alignment);
-  if (!a.success) {
-    spdlog::debug("loop candidate {} for {}: no SE3 from {} 3D-3D matches", candidate->id(), query.id(), src.size());
-    return std::nullopt;
-  }
-  Eigen::Isometry3d T_cam_world = a.S_dst_src.rigid().inverse();
-
-  // Guided search of the loop keyframe's local map with the corrected pose.
-  LoopDetection d;
-  d.query = std::const_pointer_cast<KeyFrame>(query.shared_from_this());
-  d.loop = candidate;
-  d.matched_points.assign(query.size(), nullptr);
-  for (std::size_t k = 0; k < src.size(); ++k) {
-    if (a.inlier[k]) d.matched_points[src_index[k]] = dst_point[k];
-  }
-  std::unordered_set<const MapPoint*> seen;
-  auto collect = [&](const KeyFrame& kf) {
-    for (const MapPointPtr& mp : kf.map_points()) {
-      if (mp && !mp->is_bad() && seen.insert(mp.get()).second) d.loop_points.push_back(mp);
-    }
-  };
-  collect(*candidate);
-  for (KeyFrame* n : candidate->covisibles()) {
-    if (!n->is_bad()) collect(*n);
-  }
-  std::unordered_set<const MapPoint*> matched;
-  for (const auto& mp : d.matched_points) {
-    if (mp) matched.insert(mp.get());
-  }
-  for (const MapPointPtr& mp : d.loop_points) {
-    if (matched.count(mp.get())) continue;
-    const std::ptrdiff_t j = match_projection(query, T_cam_world, *mp, options_.projection_window);
-    if (j < 0 || d.matched_points[static_cast<std::size_t>(j)]) continue;
-    d.matched_points[static_cast<std::size_t>(j)] = mp;
-    matched.insert(mp.get());
-  }
-
-  // Refine the pose on all matches; keep the inliers.
-  const CameraSetup& setup = query.setup();
-  std::vector<PoseObservation> observations;
-  std::vector<std::size_t> index;
-  for (std::size_t i = 0; i < query.size(); ++i) {
-    if (!d.matched_points[i]) continue;
-    const cv::KeyPoint& kp = query.keypoint(i);
-    PoseObservation o;
-    o.point_world = d.matched_points[i]->position();
-    o.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    o.u_right = query.u_right(i);
-    o.inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
-    observations.push_back(o);
-    index.push_back(i);
-  }
-  const PoseOptimizationResult r = static_cast<int>(observations.size()) < options_.min_inliers
-                                         ? PoseOptimizationResult{}
-                                         : optimize_pose(setup.camera, T_cam_world, observations);
-  spdlog::debug("loop candidate {} for {}: {} BoW matches, {} 3D-3D ({} RANSAC inliers), {} after guided search, {} "
-                "inliers", candidate->id(), query.id(), matches.size(), src.size(),
-                std::count(a.inlier.begin(), a.inlier.end(), true), observations.size(), r.num_inliers);
-  if (static_cast<int>(observations.size()) < options_.min_inliers || r.num_inliers < options_.min_inliers) {
-    return std::nullopt;
-  }
-  for (std::size_t k = 0; k < index.size(); ++k) {
-    if (!r.inlier[k]) d.matched_points[index[k]] = nullptr;
-  }
-  d.inliers = r.num_inliers;
-  d.T_world_query_corrected = r.T_cam_world.inverse();
-  return d;
+  if (kept < options_.min_inliers) return std::nullopt;
+  detection.inliers = kept;
+  std::erase_if(detection.loop_points, [](const MapPointPtr& mp) { return mp->is_bad(); });
+  return detection;
 }
 
 void LoopDetectorOptions::check() const {

@@ -17,7 +17,14 @@
 // the query's covisible keyframes, moved by the same correction, also see the
 // loop's map points: keyframes in a row that found the candidate's group
 // (the query included) + confirming neighbours >= consistency_threshold.
-// The caller holds the map's update mutex for every call.
+//
+// Lock contract (the map's update mutex), so that the expensive step 3 does
+// not stall tracking:
+//   prepare  (lock held, cheap): steps 1-2 and a LoopSnapshot of everything
+//            step 3 reads that other threads may change (loop_snapshot.h);
+//   verify   (no lock): step 3 on the snapshot alone;
+//   recheck  (lock held again): drops what turned bad meanwhile.
+// detect() runs the three in a row; every other call needs the lock.
 #include <Eigen/Geometry>
 #include <optional>
 #include <set>
@@ -26,6 +33,7 @@
 
 #include "stillslam/features/descriptor_matcher.h"
 #include "stillslam/geometry/pnp.h"
+#include "stillslam/loop/loop_snapshot.h"
 #include "stillslam/loop/place_recognizer.h"
 #include "stillslam/map/map.h"
 
@@ -75,23 +83,34 @@ class LoopDetector {
  public:
   LoopDetector(const PlaceRecognizer& recognizer, LoopDetectorOptions options = {});
 
-  // Steps 1-3 for one new keyframe (not yet in the recognizer, or already).
+  // prepare + verify + recheck for one new keyframe (not yet in the
+  // recognizer, or already); the caller holds the lock.
   std::optional<LoopDetection> detect(const Map& map, const KeyFrame& query);
+
+  // Steps 1-2 (updates the consistency state) and the snapshot of the
+  // candidates to verify: the consistent ones, then, with covisible
+  // confirmation, the others. nullopt: nothing to verify (too early after the
+  // last loop, no candidate, or none consistent without confirmation).
+  // Caller holds the lock.
+  std::optional<LoopSnapshot> prepare(const Map& map, const KeyFrame& query);
+  // Step 3 on a snapshot: the first candidate that passes the geometric checks
+  // (and covisible confirmation where it needs it). No lock needed; does not
+  // touch the detector's state, so it may run on another thread than prepare.
+  std::optional<LoopDetection> verify(const LoopSnapshot& snapshot) const;
+  // A verified detection against the map as it is now: nullopt if the query
+  // or loop keyframe turned bad or the loop keyframe left `map`; matched and
+  // loop points that turned bad are dropped, and the remaining matches must
+  // still be min_inliers (`inliers` becomes their count). Caller holds the lock.
+  std::optional<LoopDetection> recheck(const Map& map, LoopDetection detection) const;
 
   // Step 1: BoW candidates (group representatives, best first).
   std::vector<KeyFramePtr> candidates(const Map& map, const KeyFrame& query) const;
   // Step 2: updates the consistency state with this keyframe's candidates and
   // returns those consistent for long enough.
   std::vector<KeyFramePtr> consistent_candidates(const std::vector<KeyFramePtr>& candidates);
-  // Step 3: the first candidate that passes the geometric checks.
+  // Step 3 with the lock held: the first candidate that passes the geometric
+  // checks (no confirmation).
   std::optional<LoopDetection> verify(const KeyFrame& query, const std::vector<KeyFramePtr>& candidates) const;
-  // Step 3 for candidates that are not consistent yet: geometric checks, then
-  // covisible confirmation (the first candidate that passes both). Uses the
-  // consistency counts of the last consistent_candidates() call.
-  std::optional<LoopDetection> verify_confirmed(const KeyFrame& query, const std::vector<KeyFramePtr>& candidates) const;
-  // How many of the query's best covisible keyframes, moved by the detection's
-  // correction, match at least min_confirmation_matches loop points.
-  int count_confirmations(const LoopDetection& detection) const;
 
   // Called after a loop is closed: resets consistency and starts the gap.
   void loop_closed(std::uint64_t query_id);
@@ -101,8 +120,8 @@ class LoopDetector {
     std::set<std::uint64_t> keyframes;
     int count = 0;  // consecutive keyframes that found this group
   };
-  std::optional<LoopDetection> verify_one(const KeyFrame& query, const BowDescription& query_words,
-                                          const KeyFramePtr& candidate) const;
+  std::shared_ptr<const BowDescription> words_of(const KeyFrame& query) const;
+  std::vector<KeyFramePtr> candidates(const Map& map, const KeyFrame& query, const BowVector& bow) const;
 
   const PlaceRecognizer& recognizer_;
   LoopDetectorOptions options_;

@@ -99,14 +99,19 @@ std::vector<PlaceCandidate> PlaceRecognizer::loop_candidates(const KeyFrame& key
                                                              std::optional<std::size_t> max_results) const {
   auto d = description(keyframe.id());
   if (!d) d = std::make_shared<const BowDescription>(describe(descriptors_of(keyframe)));
-  const double min_score = min_covisible_score(d->bow, covisible);
+  return loop_candidates(keyframe.id(), d->bow, covisible, max_results);
+}
+
+std::vector<PlaceCandidate> PlaceRecognizer::loop_candidates(KeyframeId self, const BowVector& bow,
+                                                             const std::vector<KeyframeId>& covisible,
+                                                             std::optional<std::size_t> max_results) const {
+  const double min_score = min_covisible_score(bow, covisible);
   const std::unordered_set<KeyframeId> excluded(covisible.begin(), covisible.end());
   PlaceQueryOptions q;
   q.max_results = 0;
   q.min_score = min_score;
-  const KeyframeId self = keyframe.id();
   q.exclude = [&](KeyframeId id) { return id == self || excluded.count(id) > 0; };
-  return filter_by_common_words(database_.query(d->bow, q), max_results.value_or(options_.max_loop_candidates));
+  return filter_by_common_words(database_.query(bow, q), max_results.value_or(options_.max_loop_candidates));
 }
 
 void PlaceRecognizerOptions::check() const {

@@ -5,7 +5,8 @@
 // Used by relocalization (frame -> keyframes) and loop detection (keyframe ->
 // older keyframes). Thread-safe: one mutex guards the side table; the
 // database has its own lock. Knows keyframes only through their descriptors,
-// so callers hold the map lock when they read a KeyFrame for add().
+// which never change after construction (map/keyframe.h): no call needs the
+// map lock.
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -49,11 +50,11 @@ class PlaceRecognizer {
 
   // Words and direct index of an N x 32 descriptor matrix (no state touched).
   BowDescription describe(const cv::Mat& descriptors) const;
-  // The keyframe's descriptors as one matrix (caller holds the map lock).
+  // The keyframe's descriptors as one matrix.
   static cv::Mat descriptors_of(const KeyFrame& keyframe);
 
-  // Describes the keyframe (caller holds the map lock) and indexes it;
-  // replaces an earlier entry of the same id. Returns the description.
+  // Describes the keyframe and indexes it; replaces an earlier entry of the
+  // same id. Returns the description.
   std::shared_ptr<const BowDescription> add(const KeyFrame& keyframe);
   // Forgets a keyframe (culled); no-op for unknown ids.
   void erase(KeyframeId id);
@@ -74,6 +75,10 @@ class PlaceRecognizer {
   // neighbour the threshold is 0. Best first, at most max_results (default
   // max_loop_candidates; 0 = all).
   std::vector<PlaceCandidate> loop_candidates(const KeyFrame& keyframe, const std::vector<KeyframeId>& covisible,
+                                              std::optional<std::size_t> max_results = std::nullopt) const;
+  // The same for keyframe `self` described by `bow` (no map access).
+  std::vector<PlaceCandidate> loop_candidates(KeyframeId self, const BowVector& bow,
+                                              const std::vector<KeyframeId>& covisible,
                                               std::optional<std::size_t> max_results = std::nullopt) const;
   // The threshold loop_candidates uses.
   double min_covisible_score(const BowVector& bow, const std::vector<KeyframeId>& covisible) const;

@@ -40,7 +40,12 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   // current pose and the relative pose at culling time); else the pose.
   Eigen::Isometry3d T_cam_world_resolved() const;
 
-  // Features (undistorted keypoints).
+  // Features (undistorted keypoints). Keypoints, descriptors, u_right, depth,
+  // the feature grid and the setup are set by the constructor and never
+  // change: no member writes them and there is no setter (the descriptor
+  // matrix shares its data with the Frame's, which has no setter either). Code
+  // holding a KeyFramePtr may read them without the map lock
+  // (loop/loop_snapshot.h relies on it); everything else needs the lock.
   std::size_t size() const { return keypoints_.size(); }
   const cv::KeyPoint& keypoint(std::size_t i) const { return keypoints_[i]; }
   const std::uint8_t* descriptor(std::size_t i) const { return descriptors_.ptr<std::uint8_t>(static_cast<int>(i)); }

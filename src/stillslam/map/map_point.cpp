@@ -17,7 +17,11 @@ MapPoint::MapPoint(std::uint64_t id, const Eigen::Vector3d& position_world, KeyF
       reference_(reference) {}
 
 int MapPoint::predict_level(double distance, const ScalePyramid& pyramid) const {
-  const double ratio = max_distance_ / std::max(distance, 1e-9);
+  return predict_scale_level(max_distance_, distance, pyramid);
+}
+
+int predict_scale_level(double reference_distance, double distance, const ScalePyramid& pyramid) {
+  const double ratio = reference_distance / std::max(distance, 1e-9);
   int level = static_cast<int>(std::ceil(std::log(ratio) / std::log(pyramid.scale_factor)));
   return std::clamp(level, 0, pyramid.n_levels - 1);
 }

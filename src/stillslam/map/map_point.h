@@ -44,6 +44,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   double max_distance() const { return 1.2 * max_distance_; }
   // Pyramid level at which the point should appear when seen from `distance`.
   int predict_level(double distance, const ScalePyramid& pyramid) const;
+  // The unscaled far end of the range, predict_level's reference (copies of a
+  // point taken under the map lock use it with predict_scale_level).
+  double level_reference_distance() const { return max_distance_; }
 
   // Observations: keyframe -> keypoint index. Stereo/RGB-D observations count
   // twice in num_observations() (as ORB-SLAM), mono ones once.
@@ -94,5 +97,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
 };
 
 using MapPointPtr = std::shared_ptr<MapPoint>;
+
+// MapPoint::predict_level for a point whose level_reference_distance() is
+// `reference_distance`.
+int predict_scale_level(double reference_distance, double distance, const ScalePyramid& pyramid);
 
 }  // namespace stillslam
