@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "stillslam/core/error.h"
 #include "stillslam/system/progress.h"
 #include "stillslam/system/system.h"
 #include "system/sim_sequence.h"
@@ -41,7 +42,9 @@ TEST(Publish, SnapshotsMatchWhatTheSystemReports) {
     EXPECT_EQ(static_cast<int>(frame.value->keypoints.size()), stats.build.keypoints_after);
     ASSERT_EQ(frame.value->tracked.size(), frame.value->keypoints.size());
     const auto tracked = std::count(frame.value->tracked.begin(), frame.value->tracked.end(), true);
-    if (stats.state == TrackingState::Ok && i > 0) EXPECT_GE(tracked, stats.inliers / 2);
+    if (stats.state == TrackingState::Ok && i > 0) {
+      EXPECT_GE(tracked, stats.inliers / 2);
+    }
     EXPECT_EQ(frame.value->has_pose, stats.has_pose);
     if (stats.has_pose) {
       EXPECT_LT((frame.value->T_world_cam.translation() - system.last_T_world_cam()->translation()).norm(), 1e-12);

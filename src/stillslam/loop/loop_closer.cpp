@@ -2,6 +2,7 @@
 
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/loop/global_bundle_adjustment.h"
+#include "stillslam/loop/loop_snapshot.h"
 
 namespace stillslam {
 
@@ -41,33 +42,44 @@ void LoopCloser::switch_map(Map& map) {
 }
 
 void LoopCloser::process(const KeyFramePtr& keyframe) {
-  std::optional<ClosedLoop> closed;
+  // Detection: candidates and a snapshot under the map lock, verification on
+  // the snapshot without it (tracking runs meanwhile), a re-check under it.
+  Stopwatch detection_time;
+  std::optional<LoopSnapshot> snapshot;
   {
-    std::unique_lock<std::mutex> map_lock(map_->update_mutex());
+    std::lock_guard<std::mutex> lock(map_->update_mutex());
     if (keyframe->is_bad()) return;
-    Stopwatch detection_time;
-    std::optional<LoopDetection> detection;
-    if (options_.detect_loops) detection = detector_->detect(*map_, *keyframe);
+    if (options_.detect_loops) snapshot = detector_->prepare(*map_, *keyframe);
     recognizer_.add(*keyframe);
-    const double detection_ms = detection_time.elapsed_ms();
-    double correction_ms = 0;
-    if (detection) {
-      // A running global BA works on poses this correction replaces.
-      map_lock.unlock();
-      stop_global_bundle_adjustment();
-      if (options_.pause_local_mapping) options_.pause_local_mapping();
-      map_lock.lock();
-      // Local mapping may have culled either keyframe while the lock was free.
-      if (!detection->query->is_bad() && !detection->loop->is_bad()) {
-        Stopwatch correction_time;
-        closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
-                            correct_loop(*map_, *detection, loop_edges_, options_.correction)};
-        detector_->loop_closed(keyframe->id());
-        correction_ms = correction_time.elapsed_ms();
-      }
-      map_lock.unlock();
-      if (options_.resume_local_mapping) options_.resume_local_mapping();
+  }
+  std::optional<LoopDetection> detection = snapshot ? detector_->verify(*snapshot) : std::nullopt;
+  const double detection_ms = detection_time.elapsed_ms();
+
+  // Correction: local mapping paused (its BA works on copies and would write
+  // back stale poses), a running global BA stopped; the essential graph is
+  // solved without the map lock, between a begin and a finish under it.
+  std::optional<ClosedLoop> closed;
+  double correction_ms = 0;
+  if (detection) {
+    stop_global_bundle_adjustment();
+    if (options_.pause_local_mapping) options_.pause_local_mapping();
+    Stopwatch correction_time;
+    std::unique_lock<std::mutex> lock(map_->update_mutex());
+    // Local mapping may have culled either keyframe or some points meanwhile.
+    if ((detection = detector_->recheck(*map_, std::move(*detection)))) {
+      const LoopCorrectionProblem problem = begin_loop_correction(*map_, *detection, loop_edges_, options_.correction);
+      lock.unlock();
+      const std::vector<Eigen::Isometry3d> solved = solve_loop_correction(problem);
+      lock.lock();
+      closed = ClosedLoop{detection->query->id(), detection->loop->id(), detection->inliers,
+                          finish_loop_correction(*map_, problem, solved, loop_edges_)};
+      detector_->loop_closed(keyframe->id());
     }
+    lock.unlock();
+    correction_ms = correction_time.elapsed_ms();
+    if (options_.resume_local_mapping) options_.resume_local_mapping();
+  }
+  {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ++stats_.keyframes;
     stats_.detection_ms += detection_ms;
