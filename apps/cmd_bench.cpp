@@ -1,7 +1,7 @@
 // `stillslam bench`: the segmentation on/off benchmark. Runs each sequence N
 // times per mode, keeps the median run of each, and writes report.md,
 // results.json, plots and every run's trajectory into --out. See
-// system/benchmark.h for the conventions and bench/README.md for usage.
+// benchmark/benchmark.h for the conventions and bench/README.md for usage.
 #include <spdlog/spdlog.h>
 
 #include <iostream>
@@ -9,9 +9,9 @@
 
 #include "commands.h"
 #include "opencv_threads.h"
+#include "stillslam/benchmark/benchmark.h"
+#include "stillslam/benchmark/report.h"
 #include "stillslam/core/error.h"
-#include "stillslam/system/benchmark.h"
-#include "stillslam/system/report.h"
 #include "stillslam/system/system.h"
 
 namespace stillslam::apps {

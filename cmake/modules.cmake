@@ -1,9 +1,18 @@
 # stillslam_module(name DEPS ... [TEST_DEPS ...]): a static library from src/stillslam/<name>/*.cpp,
 # or an interface library when the module is header-only so far.
+# The stillslam_<m> entries of DEPS are also the module's declared
+# dependencies: cmake/check_module_deps.cmake (ctest module_deps) fails when a
+# file of the module includes a module outside their transitive closure.
 set(STILLSLAM_MODULES "")
+set(STILLSLAM_MODULE_TABLE ${CMAKE_BINARY_DIR}/stillslam_modules.cmake)
 function(stillslam_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS" ${ARGN})
   set(STILLSLAM_TEST_DEPS_${name} ${ARG_TEST_DEPS} PARENT_SCOPE)
+  set(module_deps ${ARG_DEPS})
+  list(FILTER module_deps INCLUDE REGEX "^stillslam_")
+  list(TRANSFORM module_deps REPLACE "^stillslam_" "")
+  set_property(GLOBAL APPEND_STRING PROPERTY STILLSLAM_MODULE_TABLE_TEXT
+               "list(APPEND STILLSLAM_MODULES ${name})\nset(STILLSLAM_MODULE_DEPS_${name} \"${module_deps}\")\n")
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/stillslam/${name}/*.cpp)
   set(target stillslam_${name})
   if(sources)
@@ -20,8 +29,31 @@ function(stillslam_module name)
   set(STILLSLAM_MODULES ${STILLSLAM_MODULES} ${name} PARENT_SCOPE)
 endfunction()
 
+# The module table for the boundary check, written once every stillslam_module()
+# line of the top-level CMakeLists.txt has run.
+function(stillslam_write_module_table)
+  get_property(text GLOBAL PROPERTY STILLSLAM_MODULE_TABLE_TEXT)
+  file(CONFIGURE OUTPUT ${STILLSLAM_MODULE_TABLE} CONTENT
+       "# Generated from the stillslam_module() lines of CMakeLists.txt.\nset(STILLSLAM_MODULES \"\")\n${text}" @ONLY)
+endfunction()
+cmake_language(DEFER CALL stillslam_write_module_table)
+
+# ctest module_deps: the include graph of src/ matches the declared DEPS.
+# ctest module_deps_fixtures: the same check fails, with the expected
+# messages, on small trees with an undeclared include and with a cycle.
+function(stillslam_module_dep_tests)
+  add_test(NAME module_deps
+           COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DMODULE_TABLE=${STILLSLAM_MODULE_TABLE}
+                   -P ${PROJECT_SOURCE_DIR}/cmake/check_module_deps.cmake)
+  add_test(NAME module_deps_fixtures
+           COMMAND ${CMAKE_COMMAND} -DCHECKER=${PROJECT_SOURCE_DIR}/cmake/check_module_deps.cmake
+                   -DWORK_DIR=${CMAKE_BINARY_DIR}/module_deps_fixtures
+                   -P ${PROJECT_SOURCE_DIR}/cmake/test_module_deps.cmake)
+endfunction()
+
 # One GoogleTest executable per module that has tests: test_<module>.
 function(stillslam_module_tests)
+  stillslam_module_dep_tests()
   foreach(name ${STILLSLAM_MODULES})
     file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${name}/*.cpp)
     if(sources)

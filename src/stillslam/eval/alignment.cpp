@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "stillslam/core/check.h"
 #include "stillslam/core/error.h"
 
 namespace stillslam {
@@ -34,7 +35,7 @@ Alignment align_positions(const Eigen::Matrix3Xd& est, const Eigen::Matrix3Xd& g
   Alignment alignment;
   alignment.type = type;
   if (type == AlignmentType::None) return alignment;
-  if (est.cols() != gt.cols()) throw Error("alignment needs the same number of estimated and ground-truth positions");
+  STILLSLAM_CHECK_EQ(est.cols(), gt.cols(), "align_positions: pass one ground-truth position per estimated one");
   if (est.cols() < 3) {
     throw Error("alignment needs at least 3 associated poses, got " + std::to_string(est.cols()) +
                 "; check the timestamps (--max-dt) or use --align none");

@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "stillslam/core/error.h"
+#include "stillslam/core/check.h"
 
 namespace stillslam {
 
 std::vector<double> absolute_translation_errors(const Trajectory& gt, const Trajectory& est) {
-  if (gt.size() != est.size()) throw Error("absolute errors need associated trajectories of equal length");
+  STILLSLAM_CHECK_EQ(gt.size(), est.size(), "absolute_translation_errors: pass associated trajectories");
   std::vector<double> errors(gt.size());
   for (std::size_t k = 0; k < gt.size(); ++k) {
     errors[k] = (gt[k].T_world_cam.translation() - est[k].T_world_cam.translation()).norm();
@@ -23,11 +23,13 @@ double rotation_angle_deg(const Eigen::Matrix3d& R) {
 }
 
 RelativeErrors relative_errors(const Trajectory& gt, const Trajectory& est, const std::vector<PosePair>& pairs) {
-  if (gt.size() != est.size()) throw Error("relative errors need associated trajectories of equal length");
+  STILLSLAM_CHECK_EQ(gt.size(), est.size(), "relative_errors: pass associated trajectories");
   RelativeErrors errors;
   errors.translation.reserve(pairs.size());
   errors.rotation_deg.reserve(pairs.size());
   for (const auto& [i, j] : pairs) {
+    STILLSLAM_CHECK_LT(i, gt.size(), "relative_errors: a pose pair indexes past the trajectories");
+    STILLSLAM_CHECK_LT(j, gt.size(), "relative_errors: a pose pair indexes past the trajectories");
     const Eigen::Isometry3d gt_rel = gt[i].T_world_cam.inverse() * gt[j].T_world_cam;
     const Eigen::Isometry3d est_rel = est[i].T_world_cam.inverse() * est[j].T_world_cam;
     const Eigen::Isometry3d E = gt_rel.inverse() * est_rel;

@@ -4,12 +4,17 @@
 #include <cmath>
 #include <numbers>
 
+#include "stillslam/core/check.h"
+
 namespace stillslam {
 
 void compute_brief(const cv::Mat& smoothed, const std::vector<cv::KeyPoint>& keypoints,
                    const BriefPattern& pattern, cv::Mat& descriptors, int row_offset) {
-  CV_Assert(smoothed.type() == CV_8UC1 && descriptors.type() == CV_8UC1 && descriptors.cols == 32 &&
-            descriptors.rows >= row_offset + static_cast<int>(keypoints.size()));
+  STILLSLAM_CHECK_EQ(smoothed.type(), CV_8UC1, "compute_brief: the smoothed level must be 8-bit grey");
+  STILLSLAM_CHECK(descriptors.type() == CV_8UC1 && descriptors.cols == 32,
+                  "compute_brief: descriptors must be N x 32 CV_8U");
+  STILLSLAM_CHECK_LE(row_offset + static_cast<int>(keypoints.size()), descriptors.rows,
+                     "compute_brief: one descriptor row per keypoint from row_offset on");
   constexpr int kPoints = 2 * BriefPattern::kNumPairs;
   // Pattern as separate float coordinate arrays (point 2i, 2i+1 = pair i), so
   // the per-keypoint rotation below is a straight vectorizable loop.

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "stillslam/core/check.h"
+
 namespace stillslam {
 namespace {
 
@@ -29,8 +31,10 @@ int descriptor_distance(const std::uint8_t* a, const std::uint8_t* b) {
 }
 
 int descriptor_distance(const cv::Mat& a, const cv::Mat& b) {
-  CV_Assert(a.type() == CV_8UC1 && b.type() == CV_8UC1 && a.total() == kDescriptorBytes &&
-            b.total() == kDescriptorBytes && a.isContinuous() && b.isContinuous());
+  STILLSLAM_CHECK(a.type() == CV_8UC1 && a.total() == kDescriptorBytes && a.isContinuous(),
+                  "descriptor_distance: pass one continuous 32-byte ORB descriptor");
+  STILLSLAM_CHECK(b.type() == CV_8UC1 && b.total() == kDescriptorBytes && b.isContinuous(),
+                  "descriptor_distance: pass one continuous 32-byte ORB descriptor");
   return descriptor_distance(a.ptr<std::uint8_t>(), b.ptr<std::uint8_t>());
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "stillslam/core/check.h"
 #include "stillslam/features/descriptor.h"
 
 namespace stillslam {
@@ -30,8 +31,10 @@ std::vector<cv::DMatch> match_descriptors(const cv::Mat& query, const cv::Mat& t
                                           const DescriptorMatchOptions& options) {
   std::vector<cv::DMatch> matches;
   if (query.empty() || train.empty()) return matches;
-  CV_Assert(query.type() == CV_8UC1 && train.type() == CV_8UC1 && query.cols == kDescriptorBytes &&
-            train.cols == kDescriptorBytes);
+  STILLSLAM_CHECK_EQ(query.type(), CV_8UC1, "match_descriptors: query rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(query.cols, kDescriptorBytes, "match_descriptors: query rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(train.type(), CV_8UC1, "match_descriptors: train rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(train.cols, kDescriptorBytes, "match_descriptors: train rows must be 32-byte ORB descriptors");
   std::vector<Best> best_for_query(static_cast<std::size_t>(query.rows));
   std::vector<Best> best_for_train(static_cast<std::size_t>(train.rows));
   for (int q = 0; q < query.rows; ++q) {

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "stillslam/core/check.h"
 #include "stillslam/core/error.h"
 #include "stillslam/features/brief_descriptor.h"
 #include "stillslam/features/fast_cells.h"
@@ -117,10 +118,9 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
                 std::to_string(gray.type()) + ", " + std::to_string(gray.cols) + "x" +
                 std::to_string(gray.rows) + "); convert colour images with cv::cvtColor first");
   }
-  if (!exclude.empty() && exclude.size() != gray.size()) {
-    throw Error("ORB extraction: the exclusion mask is " + std::to_string(exclude.cols) + "x" +
-                std::to_string(exclude.rows) + " but the image is " + std::to_string(gray.cols) + "x" +
-                std::to_string(gray.rows));
+  if (!exclude.empty()) {
+    STILLSLAM_CHECK_EQ(exclude.cols, gray.cols, "ORB extraction: the exclusion mask must have the image's size");
+    STILLSLAM_CHECK_EQ(exclude.rows, gray.rows, "ORB extraction: the exclusion mask must have the image's size");
   }
   std::vector<cv::Mat> levels = build_image_pyramid(gray, pyramid_);
   // The mask at each level's size: a corner is dropped when its level pixel

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "stillslam/core/check.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
 #include "stillslam/features/descriptor.h"
@@ -114,11 +115,10 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
   out.u_right.assign(n, -1.f);
   out.depth.assign(n, -1.f);
   if (n == 0 || right.keypoints.empty()) return out;
-  if (left_pyramid.size() != static_cast<std::size_t>(pyramid.n_levels) ||
-      right_pyramid.size() != static_cast<std::size_t>(pyramid.n_levels)) {
-    throw Error("match_stereo: both image pyramids need " + std::to_string(pyramid.n_levels) +
-                " levels (pass the pyramids returned by OrbExtractor::extract)");
-  }
+  STILLSLAM_CHECK_EQ(left_pyramid.size(), pyramid.n_levels,
+                     "match_stereo: pass the left pyramid OrbExtractor::extract returned");
+  STILLSLAM_CHECK_EQ(right_pyramid.size(), pyramid.n_levels,
+                     "match_stereo: pass the right pyramid OrbExtractor::extract returned");
   if (!(fx > 0) || !(bf > 0)) {
     throw Error("match_stereo: fx and bf (baseline * fx) must be positive; check Camera.fx and "
                 "Stereo.b / Camera.bf in the settings");
@@ -220,9 +220,7 @@ StereoMatches match_stereo(const OrbFeatures& left, const std::vector<cv::Mat>& 
 StereoMatches stereo_from_depth(const std::vector<cv::KeyPoint>& raw,
                                 const std::vector<cv::KeyPoint>& undistorted, const cv::Mat& depth,
                                 double bf, double depth_scale) {
-  if (raw.size() != undistorted.size()) {
-    throw Error("stereo_from_depth: raw and undistorted keypoint lists differ in size");
-  }
+  STILLSLAM_CHECK_EQ(raw.size(), undistorted.size(), "stereo_from_depth: one undistorted keypoint per raw keypoint");
   if (depth.type() != CV_32FC1 && depth.type() != CV_16UC1) {
     throw Error("stereo_from_depth: depth image must be CV_32F metres or CV_16U with a depth scale "
                 "(DepthMapFactor), got type " + std::to_string(depth.type()));

@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "stillslam/core/error.h"
+#include "stillslam/core/check.h"
 
 namespace stillslam {
 namespace {
@@ -46,10 +46,7 @@ int classify_pnp(const PinholeCamera& camera, const Eigen::Isometry3d& T_cam_wor
 
 PnpResult solve_pnp_ransac(const PinholeCamera& camera, const std::vector<Eigen::Vector3d>& points_world,
                            const std::vector<Eigen::Vector2d>& pixels_undistorted, const PnpRansacOptions& options) {
-  if (points_world.size() != pixels_undistorted.size()) {
-    throw Error("solve_pnp_ransac: " + std::to_string(points_world.size()) + " points but " +
-                std::to_string(pixels_undistorted.size()) + " pixels; pass one pixel per point");
-  }
+  STILLSLAM_CHECK_EQ(points_world.size(), pixels_undistorted.size(), "solve_pnp_ransac: pass one pixel per point");
   PnpResult result;
   result.inlier.assign(points_world.size(), false);
   if (points_world.size() < 4) return result;
@@ -111,13 +108,8 @@ PnpResult solve_pnp_ransac(const PinholeCamera& camera, const std::vector<Eigen:
 
 Sim3 align_umeyama(const std::vector<Eigen::Vector3d>& src, const std::vector<Eigen::Vector3d>& dst,
                    bool with_scale) {
-  if (src.size() != dst.size()) {
-    throw Error("align_umeyama: " + std::to_string(src.size()) + " source but " + std::to_string(dst.size()) +
-                " destination points; pass matched pairs");
-  }
-  if (src.size() < 3) {
-    throw Error("align_umeyama: needs at least 3 point pairs, got " + std::to_string(src.size()));
-  }
+  STILLSLAM_CHECK_EQ(src.size(), dst.size(), "align_umeyama: pass matched pairs");
+  STILLSLAM_CHECK_GE(src.size(), 3u, "align_umeyama: needs at least 3 point pairs");
   Eigen::Matrix3Xd S(3, src.size()), D(3, dst.size());
   for (std::size_t i = 0; i < src.size(); ++i) {
     S.col(static_cast<Eigen::Index>(i)) = src[i];
@@ -131,10 +123,7 @@ Sim3 align_umeyama(const std::vector<Eigen::Vector3d>& src, const std::vector<Ei
 
 AlignmentResult align_ransac(const std::vector<Eigen::Vector3d>& src, const std::vector<Eigen::Vector3d>& dst,
                              const AlignmentRansacOptions& options) {
-  if (src.size() != dst.size()) {
-    throw Error("align_ransac: " + std::to_string(src.size()) + " source but " + std::to_string(dst.size()) +
-                " destination points; pass matched pairs");
-  }
+  STILLSLAM_CHECK_EQ(src.size(), dst.size(), "align_ransac: pass matched pairs");
   AlignmentResult result;
   const std::size_t n = src.size();
   result.inlier.assign(n, false);

@@ -1,14 +1,14 @@
 #include "stillslam/io/image_files.h"
 
 #include <algorithm>
-#include <cctype>
 #include <string>
+
+#include "stillslam/core/text.h"
 
 namespace stillslam {
 
 bool is_image_file(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower(file.extension().string());
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".pgm" || ext == ".tif" ||
          ext == ".tiff";
 }

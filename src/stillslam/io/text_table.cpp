@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text.h"
 
 namespace stillslam {
 
@@ -18,18 +19,9 @@ std::vector<TextRow> read_text_table(const std::filesystem::path& file) {
     ++number;
     TextRow row;
     row.line = number;
-    std::string field;
-    for (char c : line) {
-      if (c == '#' && row.fields.empty() && field.empty()) break;  // comment line
-      if (c == ' ' || c == '\t' || c == ',' || c == '\r') {
-        if (!field.empty()) row.fields.push_back(std::move(field));
-        field.clear();
-      } else {
-        field.push_back(c);
-      }
-    }
-    if (!field.empty()) row.fields.push_back(std::move(field));
-    if (!row.fields.empty()) rows.push_back(std::move(row));
+    row.fields = split_tokens(line, true);
+    // A comment line starts with '#'; a '#' later on is part of a field.
+    if (!row.fields.empty() && row.fields.front().front() != '#') rows.push_back(std::move(row));
   }
   return rows;
 }

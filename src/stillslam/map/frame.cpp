@@ -1,5 +1,6 @@
 #include "stillslam/map/frame.h"
 
+#include "stillslam/core/check.h"
 #include "stillslam/map/keyframe.h"
 
 namespace stillslam {
@@ -17,6 +18,11 @@ Frame::Frame(std::uint64_t id, double timestamp, std::shared_ptr<const CameraSet
       depth_(std::move(depth)),
       map_points_(keypoints_.size()),
       outlier_(keypoints_.size(), 0) {
+  STILLSLAM_CHECK(setup_ != nullptr, "Frame: pass the camera setup");
+  STILLSLAM_CHECK_EQ(keypoints_raw_.size(), keypoints_.size(), "Frame: one raw keypoint per undistorted keypoint");
+  STILLSLAM_CHECK_EQ(descriptors_.rows, keypoints_.size(), "Frame: one descriptor row per keypoint");
+  STILLSLAM_CHECK_EQ(u_right_.size(), keypoints_.size(), "Frame: one u_right per keypoint (-1 where unknown)");
+  STILLSLAM_CHECK_EQ(depth_.size(), keypoints_.size(), "Frame: one depth per keypoint (-1 where unknown)");
   grid_ = std::make_shared<FeatureGrid>(keypoints_, setup_->camera.undistorted_bounds());
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "stillslam/core/check.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
 #include "stillslam/optimize/reprojection_costs.h"
@@ -37,12 +38,18 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
                                      std::vector<BaPoint> points, const std::vector<BaObservation>& observations,
                                      const BundleAdjustmentOptions& options) {
   for (std::size_t i = 0; i < observations.size(); ++i) {
-    if (observations[i].keyframe >= keyframes.size() || observations[i].point >= points.size()) {
-      throw Error("bundle_adjust: observation " + std::to_string(i) + " refers to keyframe " +
-                  std::to_string(observations[i].keyframe) + " / point " + std::to_string(observations[i].point) +
-                  " but there are " + std::to_string(keyframes.size()) + " keyframes and " +
-                  std::to_string(points.size()) + " points");
-    }
+    STILLSLAM_CHECK_LT(observations[i].keyframe, keyframes.size(),
+                       "bundle_adjust: observation " + std::to_string(i) + " refers to a keyframe it was not given");
+    STILLSLAM_CHECK_LT(observations[i].point, points.size(),
+                       "bundle_adjust: observation " + std::to_string(i) + " refers to a point it was not given");
+  }
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    STILLSLAM_CHECK(keyframes[i].T_cam_world.matrix().allFinite(),
+                    "bundle_adjust: keyframe " + std::to_string(i) + " has a non-finite pose");
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    STILLSLAM_CHECK(points[i].position_world.allFinite(),
+                    "bundle_adjust: point " + std::to_string(i) + " has a non-finite position");
   }
   const Intrinsics k(camera);
   const std::size_t n_obs = observations.size();

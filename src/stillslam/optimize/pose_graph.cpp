@@ -7,7 +7,7 @@
 #include <ceres/solver.h>
 #include <string>
 
-#include "stillslam/core/error.h"
+#include "stillslam/core/check.h"
 
 namespace stillslam {
 namespace {
@@ -53,16 +53,13 @@ std::vector<Eigen::Isometry3d> optimize_pose_graph(std::vector<Eigen::Isometry3d
                                                    const std::vector<std::size_t>& fixed_nodes, int iterations) {
   const std::size_t n = T_world_node.size();
   for (const PoseGraphEdge& e : edges) {
-    if (e.from >= n || e.to >= n) {
-      throw Error("optimize_pose_graph: edge " + std::to_string(e.from) + " -> " + std::to_string(e.to) +
-                  " is outside the " + std::to_string(n) + " nodes");
-    }
+    STILLSLAM_CHECK_LT(e.from, n, "optimize_pose_graph: an edge starts outside the nodes");
+    STILLSLAM_CHECK_LT(e.to, n, "optimize_pose_graph: an edge ends outside the nodes");
   }
-  for (std::size_t f : fixed_nodes) {
-    if (f >= n) {
-      throw Error("optimize_pose_graph: fixed node " + std::to_string(f) + " is outside the " + std::to_string(n) +
-                  " nodes");
-    }
+  for (std::size_t f : fixed_nodes) STILLSLAM_CHECK_LT(f, n, "optimize_pose_graph: a fixed node is outside the nodes");
+  for (std::size_t i = 0; i < n; ++i) {
+    STILLSLAM_CHECK(T_world_node[i].matrix().allFinite(),
+                    "optimize_pose_graph: node " + std::to_string(i) + " has a non-finite pose");
   }
   if (edges.empty() || n == 0) return T_world_node;
 

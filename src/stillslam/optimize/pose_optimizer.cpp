@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 
+#include "stillslam/core/check.h"
 #include "stillslam/core/option_check.h"
 #include "stillslam/optimize/pose_residuals.h"
 #include "stillslam/optimize/reprojection_costs.h"
@@ -15,6 +17,7 @@ namespace stillslam {
 PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::Isometry3d& T_cam_world_init,
                                      const std::vector<PoseObservation>& observations,
                                      const PoseOptimizerOptions& options) {
+  STILLSLAM_CHECK(T_cam_world_init.matrix().allFinite(), "optimize_pose: the initial pose is not finite");
   const Intrinsics k(camera);
   const std::size_t n = observations.size();
   PoseOptimizationResult result;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "stillslam/core/error.h"
+#include "stillslam/core/check.h"
 
 namespace stillslam {
 
@@ -34,7 +34,7 @@ void Vocabulary::index_tree() {
 }
 
 WordId Vocabulary::word_of(const std::uint8_t* descriptor, NodeId* node_at_level, int level) const {
-  if (empty()) throw Error("Vocabulary::word_of: the vocabulary is empty (train or load one first)");
+  STILLSLAM_CHECK(!empty(), "Vocabulary::word_of: the vocabulary is empty (train or load one first)");
   const Descriptor256 d = place_detail::pack(descriptor);
   NodeId node = 0;
   NodeId at_level = 0;
@@ -63,8 +63,8 @@ void Vocabulary::transform(const cv::Mat& descriptors, BowVector& bow, FeatureVe
   bow.entries.clear();
   features.groups.clear();
   if (descriptors.empty()) return;
-  if (descriptors.type() != CV_8UC1 || descriptors.cols != 32)
-    throw Error("Vocabulary::transform: expected N x 32 CV_8U ORB descriptors");
+  STILLSLAM_CHECK_EQ(descriptors.type(), CV_8UC1, "Vocabulary::transform: pass N x 32 CV_8U ORB descriptors");
+  STILLSLAM_CHECK_EQ(descriptors.cols, 32, "Vocabulary::transform: pass N x 32 CV_8U ORB descriptors");
   const bool direct = direct_index_level > 0;
   std::vector<std::pair<WordId, double>> words;
   words.reserve(static_cast<std::size_t>(descriptors.rows));

@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text.h"
 
 namespace stillslam::sim {
 namespace fs = std::filesystem;
@@ -19,8 +20,7 @@ std::vector<fs::path> files_with(const fs::path& dir, const std::vector<std::str
   std::vector<fs::path> out;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (!e.is_regular_file()) continue;
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    const std::string ext = lower(e.path().extension().string());
     if (std::find(exts.begin(), exts.end(), ext) != exts.end()) out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());

@@ -1,4 +1,4 @@
-#include "stillslam/system/benchmark.h"
+#include "stillslam/benchmark/benchmark.h"
 
 #include <spdlog/spdlog.h>
 

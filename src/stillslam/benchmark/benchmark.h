@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "stillslam/benchmark/benchmark_input.h"
 #include "stillslam/eval/error_statistics.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/trajectory.h"
-#include "stillslam/system/benchmark_input.h"
 #include "stillslam/system/run_summary.h"
 
 namespace stillslam {

@@ -1,4 +1,4 @@
-#include "stillslam/system/benchmark_input.h"
+#include "stillslam/benchmark/benchmark_input.h"
 
 #include <fstream>
 #include <map>

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "stillslam/eval/evaluation_report.h"
-#include "stillslam/system/report.h"
+#include "stillslam/benchmark/report.h"
 
 namespace stillslam {
 namespace {

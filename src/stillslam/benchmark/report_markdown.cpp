@@ -4,7 +4,7 @@
 #include <limits>
 #include <sstream>
 
-#include "stillslam/system/report.h"
+#include "stillslam/benchmark/report.h"
 
 namespace stillslam {
 namespace {

@@ -9,7 +9,7 @@
 #include "stillslam/core/text_file.h"
 #include "stillslam/eval/metrics.h"
 #include "stillslam/eval/svg_plot.h"
-#include "stillslam/system/report.h"
+#include "stillslam/benchmark/report.h"
 
 namespace stillslam {
 namespace {

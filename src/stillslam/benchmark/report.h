@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stillslam/system/benchmark.h"
+#include "stillslam/benchmark/benchmark.h"
 
 namespace stillslam {
 

@@ -1,4 +1,4 @@
-#include "stillslam/system/report.h"
+#include "stillslam/benchmark/report.h"
 
 #include <spdlog/spdlog.h>
 

@@ -12,10 +12,10 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "stillslam/benchmark/benchmark.h"
+#include "stillslam/benchmark/report.h"
 #include "stillslam/core/error.h"
 #include "stillslam/sim/sequence_writer.h"
-#include "stillslam/system/benchmark.h"
-#include "stillslam/system/report.h"
 
 namespace stillslam {
 namespace {
