@@ -54,9 +54,10 @@ struct Outcome {
   std::vector<MapMergeStats> merges;
 };
 
-Outcome run(const test::SimSequence& seq, bool merging, int new_map_after = kLostFramesForNewMap) {
+Outcome run(const test::SimSequence& seq, bool merging, int new_map_after = kLostFramesForNewMap,
+            bool deterministic = true) {
   SystemOptions options;
-  options.deterministic = true;
+  options.deterministic = deterministic;
   options.vocabulary_path = vocabulary_file();
   options.new_map_after_lost_frames = new_map_after;
   Settings settings = seq.settings;
@@ -149,6 +150,21 @@ TEST(AtlasEndToEnd, NewMapIsMergedBackIntoTheOldOne) {
   std::cout << "ATE over the whole sequence after the merge: " << ev.ape_stats.rmse << " m (max "
             << ev.ape_stats.max << ") over " << ev.pairs << " poses\n";
   EXPECT_LT(ev.ape_stats.rmse, 0.01);
+}
+
+// The same with local mapping and loop closing on their threads: the stages
+// are flushed and moved to the new map, then to the merged one, while
+// tracking goes on (the ThreadSanitizer job runs this one).
+TEST(AtlasEndToEnd, ThreadedStagesFollowTheNewMapAndTheMerge) {
+  if (!std::filesystem::exists(vocabulary_file())) GTEST_SKIP() << "no " << vocabulary_file();
+  const test::SimSequence seq = sequence_with_gap(true);
+  const Outcome out = run(seq, true, kLostFramesForNewMap, false);
+  EXPECT_EQ(out.new_maps, 1);
+  ASSERT_EQ(out.merges.size(), 1u);
+  EXPECT_EQ(out.maps, 1u);
+  for (const MapPose& p : out.trajectory) EXPECT_EQ(p.map_id, 0u);
+  const EvaluationResult ev = evaluate(seq.groundtruth, poses_of(out.trajectory), EvaluationOptions{});
+  EXPECT_LT(ev.ape_stats.rmse, 0.02);
 }
 
 // The same gap all black: relocalization never had an image to work on, so

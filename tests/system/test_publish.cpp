@@ -89,7 +89,8 @@ TEST(Publish, MapSnapshotsComeOnKeyframesAndEveryNFrames) {
 
 TEST(Publish, ReadersOnAnotherThreadWhileTheStagesRun) {
   const test::SimSequence& seq = sequence();
-  SystemOptions options;  // threaded local mapping
+  SystemOptions options;  // threaded local mapping and loop closing
+  options.vocabulary_path = std::filesystem::path(STILLSLAM_SOURCE_DIR) / "vocab" / "orb_vocabulary.bin";
   System system(seq.settings, SensorType::Rgbd, seq.stereo, options);
   std::atomic<bool> done{false};
   std::size_t reads = 0, points_seen = 0;
