@@ -1,6 +1,6 @@
 #pragma once
 // Bundle adjustment over plain structs (map/ converts its keyframes and map
-// points): local BA now, global BA later (same function, all keyframes).
+// points): local BA (mapping/) and global BA (loop/) use the same function.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <atomic>

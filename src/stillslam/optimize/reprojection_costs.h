@@ -4,7 +4,7 @@
 // [u - u_obs, v - v_obs, u_r - u_r_obs] with u_r = u - bf / z. Pose blocks use
 // Se3LeftManifold (tangent Jacobian in the first 6 ambient columns). Evaluate
 // fails (step rejected) when the point is not in front of the camera.
-// (The pose-only costs live in pose_delta.h.)
+// (The pose-only costs live in pose_residuals.h.)
 #include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 
