@@ -1,17 +1,13 @@
 #include "stillslam/publish/publisher.h"
 
-#include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 
 namespace stillslam {
 
 void PublishOptions::check() const {
-  if (map_every_frames < 0) {
-    throw Error("PublishOptions.map_every_frames = " + std::to_string(map_every_frames) + ": must be >= 0");
-  }
-  if (min_covisibility_weight < 1) {
-    throw Error("PublishOptions.min_covisibility_weight = " + std::to_string(min_covisibility_weight) +
-                ": must be >= 1");
-  }
+  using namespace option_check;
+  at_least("PublishOptions.map_every_frames", map_every_frames, 0);
+  at_least("PublishOptions.min_covisibility_weight", min_covisibility_weight, 1);
 }
 
 std::size_t AtlasSnapshot::num_keyframes() const {

@@ -332,7 +332,11 @@ FrameStats System::process(const SensorFrame& input) {
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
     records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference, result.new_keyframe, {}});
-    if (options_.trajectory_refinement.enabled) records_.back().observations = collect_frame_observations(frame);
+    if (options_.trajectory_refinement.enabled) {
+      // It reads the matched points' observations, which local mapping changes.
+      std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+      records_.back().observations = collect_frame_observations(frame);
+    }
     last_T_world_cam_ = frame.T_cam_world().inverse();
     stats.has_pose = true;
   }
