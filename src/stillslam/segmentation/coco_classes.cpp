@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text.h"
 
 namespace stillslam {
 
@@ -35,12 +36,10 @@ std::string coco_class_name(int class_id) {
 
 namespace {
 
+// "Traffic_Light " -> "traffic light".
 std::string normalized(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  const auto last = s.find_last_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  std::string out(s.substr(first, last - first + 1));
-  for (char& c : out) c = c == '_' ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string out = lower(trim(s));
+  std::replace(out.begin(), out.end(), '_', ' ');
   return out;
 }
 
