@@ -103,6 +103,11 @@ System::System(const Settings& settings, SensorType sensor, const std::optional<
   if (!options_.load_map.empty()) tracker_->localize_in(atlas_->active_map());
 }
 
+// The data flow, numbered in the order a frame goes through it:
+//   1 segmentation -> 2 frame building -> 3 tracking -> [queue] 4 local mapping
+//   -> [queue] 5 loop closing (and finished keyframes -> merge detection in process()).
+// Stages 3-5 are built from the end backwards, so each exists before the
+// stage that feeds it.
 void System::build_pipeline(const Settings& settings) {
   const WorkerMode mode = options_.deterministic ? WorkerMode::Synchronous : WorkerMode::Threaded;
 
