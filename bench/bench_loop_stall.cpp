@@ -21,7 +21,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <vector>
 
 #include "../tests/loop/loop_scene.h"  // same scene as the tests
@@ -31,16 +30,11 @@
 #include "stillslam/loop/loop_correction.h"
 #include "stillslam/loop/loop_detector.h"
 #include "stillslam/loop/place_recognizer.h"
+#include "stillslam/tracking/thread_cpu_stopwatch.h"
 
 using namespace stillslam;
 
 namespace {
-
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
 
 struct Cost {
   double wall = 0, cpu = 0;
@@ -54,9 +48,9 @@ struct Cost {
 template <typename F>
 Cost timed(F&& f) {
   Stopwatch w;
-  const double c0 = thread_cpu_ms();
+  ThreadCpuStopwatch cpu;
   f();
-  return {w.elapsed_ms(), thread_cpu_ms() - c0};
+  return {w.elapsed_ms(), cpu.elapsed_ms()};
 }
 
 double median(std::vector<double> v) {
