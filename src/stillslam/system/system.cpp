@@ -1,13 +1,12 @@
 #include "stillslam/system/system.h"
 
-#include <unistd.h>
-
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <array>
 #include <unordered_set>
+
 #include "stillslam/core/error.h"
+#include "stillslam/core/shipped_files.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
@@ -40,30 +39,13 @@ std::shared_ptr<const CameraSetup> make_camera_setup(const Settings& settings, S
               "sequence and settings");
 }
 
-std::optional<std::filesystem::path> default_vocabulary_path(const std::filesystem::path& executable) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (fs::path dir = executable.parent_path(); !dir.empty(); dir = dir.parent_path()) {
-    const fs::path candidate = dir / "vocab" / "orb_vocabulary.bin";
-    if (fs::is_regular_file(candidate, ec)) return candidate;
-    if (dir == dir.root_path()) break;
-  }
-  return std::nullopt;
-}
-
-std::filesystem::path current_executable() {
-  std::array<char, 4096> buffer{};
-  const ssize_t n = readlink("/proc/self/exe", buffer.data(), buffer.size() - 1);
-  return n > 0 ? std::filesystem::path(std::string(buffer.data(), static_cast<std::size_t>(n)))
-               : std::filesystem::path();
-}
-
 std::filesystem::path resolve_vocabulary_option(const std::string& option) {
   if (option == "none") return {};
   if (!option.empty()) return option;
-  if (auto found = default_vocabulary_path(current_executable())) return *found;
-  spdlog::warn("no vocab/orb_vocabulary.bin found above {}: relocalization and loop closing are off "
-               "(pass --vocabulary FILE)", current_executable().string());
+  const std::filesystem::path executable = running_executable();
+  if (auto found = find_shipped_file(executable, kShippedVocabulary)) return *found;
+  spdlog::warn("no {} found above {}: relocalization and loop closing are off (pass --vocabulary FILE)",
+               kShippedVocabulary, executable.string());
   return {};
 }
 
@@ -413,22 +395,27 @@ void System::publish(const SensorFrame& input, const Frame& frame, const FrameSt
   auto atlas = std::make_shared<AtlasSnapshot>();
   atlas->frame_id = frame.id();
   atlas->active_map_id = atlas_->active_map_id();
-  atlas->loops_closed = loop_closer_ ? loop_closer_->stats().loops_closed : 0;
+  atlas->loops_closed = stats.loops_closed;
   atlas->merges = static_cast<int>(merges_.size());
   atlas->new_maps = new_maps_started_;
   for (Map* map : atlas_->maps()) {
     std::lock_guard<std::mutex> lock(map->update_mutex());
     MapSnapshot m = snapshot_map(*map, options_.publish.min_covisibility_weight);
     m.active = map->id() == atlas->active_map_id;
-    std::unordered_set<const KeyFrame*> members;
-    for (const KeyFramePtr& kf : map->all_keyframes()) members.insert(kf.get());
+    const std::unordered_set<const KeyFrame*> members = keyframes_of(*map);
     for (const FrameRecord& r : records_) {
       if (!members.count(r.reference.get())) continue;
-      m.trajectory.push_back((r.T_cam_ref * r.reference->T_cam_world_resolved()).inverse().translation());
+      m.trajectory.push_back(r.T_cam_world().inverse().translation());
     }
     atlas->maps.push_back(std::move(m));
   }
   publisher_.publish_atlas(std::move(atlas));
+}
+
+std::unordered_set<const KeyFrame*> System::keyframes_of(const Map& map) {
+  std::unordered_set<const KeyFrame*> out;
+  for (const KeyFramePtr& kf : map.all_keyframes()) out.insert(kf.get());
+  return out;
 }
 
 std::vector<MapPose> System::trajectory_with_maps() const {
@@ -436,12 +423,11 @@ std::vector<MapPose> System::trajectory_with_maps() const {
   std::vector<bool> done(records_.size(), false);
   for (Map* map : atlas_->maps()) {
     std::lock_guard<std::mutex> lock(map->update_mutex());
-    std::unordered_set<const KeyFrame*> members;
-    for (const KeyFramePtr& kf : map->all_keyframes()) members.insert(kf.get());
+    const std::unordered_set<const KeyFrame*> members = keyframes_of(*map);
     for (std::size_t i = 0; i < records_.size(); ++i) {
       const FrameRecord& r = records_[i];
       if (done[i] || !members.count(r.reference.get())) continue;
-      Eigen::Isometry3d T_cam_world = r.T_cam_ref * r.reference->T_cam_world_resolved();
+      Eigen::Isometry3d T_cam_world = r.T_cam_world();
       // A keyframe's own pose comes from bundle adjustment, with every
       // observation of it since: better than one frame's motion-only BA.
       const bool active_keyframe = r.keyframe && !r.reference->is_bad();

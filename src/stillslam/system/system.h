@@ -26,6 +26,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <unordered_set>
 #include <vector>
 
 #include "stillslam/core/work_queue.h"
@@ -59,7 +60,7 @@ struct SystemOptions {
   // BA, no aborts): same input gives the same trajectory bit for bit.
   bool deterministic = false;
   // ORB vocabulary (the committed vocab/orb_vocabulary.bin, see
-  // default_vocabulary_path()) for relocalization and loop closing. Empty:
+  // resolve_vocabulary_option()) for relocalization and loop closing. Empty:
   // both disabled (unit tests); a path that cannot be read: Error.
   std::filesystem::path vocabulary_path;
   // With a vocabulary: detect and correct loops. false: keyframes are still
@@ -94,15 +95,10 @@ struct MapPose {
   std::uint64_t map_id = 0;
 };
 
-// vocab/orb_vocabulary.bin of the repository the executable was built in:
-// looked for next to `executable` and in its parent folders (build/stillslam
-// -> <repo>/vocab/). nullopt when not found.
-std::optional<std::filesystem::path> default_vocabulary_path(const std::filesystem::path& executable);
-// The running executable (/proc/self/exe).
-std::filesystem::path current_executable();
 // The apps' --vocabulary option: "none" -> empty (disabled), a path -> that
-// path, empty -> default_vocabulary_path(current_executable()) (empty with a
-// warning when not found).
+// path, empty -> the committed vocab/orb_vocabulary.bin found from the
+// running executable (core/shipped_files.h; empty with a warning when not
+// found).
 std::filesystem::path resolve_vocabulary_option(const std::string& option);
 
 class System {
@@ -163,7 +159,13 @@ class System {
     Eigen::Isometry3d T_cam_ref;
     bool keyframe;                   // the frame became `reference`
     FrameObservations observations;  // empty without trajectory refinement
+    // As tracked, moved with its reference keyframe since. Caller holds the
+    // lock of the map that holds the reference keyframe.
+    Eigen::Isometry3d T_cam_world() const { return T_cam_ref * reference->T_cam_world_resolved(); }
   };
+  // Every keyframe `map` has held (culled ones too): the records whose
+  // reference is among them are expressed in `map`. Caller holds its lock.
+  static std::unordered_set<const KeyFrame*> keyframes_of(const Map& map);
 
   // Creates the stages and connects them (the data flow in one place).
   void build_pipeline(const Settings& settings);
