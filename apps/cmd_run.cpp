@@ -22,6 +22,7 @@
 #include "commands.h"
 #include "opencv_threads.h"
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/dataset.h"
@@ -80,7 +81,7 @@ class SignalWatcher {
 void write_json(const fs::path& path, const nlohmann::json& j) {
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path.string() + ": check that the output folder is writable");
-  out << j.dump(1) << "\n";
+  out << json_text(j, 1) << "\n";
 }
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "opencv_threads.h"
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/io/image_files.h"
 #include "stillslam/io/image_io.h"
@@ -161,7 +162,7 @@ void run_segment(const SegmentArgs& args) {
     for (const auto& d : dets) {
       const std::string json = detection_json(d);
       std::cout << json << '\n';
-      jsonl << R"({"image": )" << nlohmann::json(file.filename().string()).dump() << ", " << json.substr(1) << '\n';
+      jsonl << R"({"image": )" << json_text(file.filename().string()) << ", " << json.substr(1) << '\n';
     }
     std::cout.flush();
     std::cerr << file.filename().string() << ": " << dets.size() << " detection(s), " << static_cast<int>(ms)

@@ -26,6 +26,7 @@
 #include <string>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
@@ -179,7 +180,7 @@ int bench(const Args& a) {
   }
   if (!a.trajectory.empty()) write_trajectory(a.trajectory, r.trajectory, TrajectoryFormat::Tum);
   if (!a.keyframe_trajectory.empty()) write_trajectory(a.keyframe_trajectory, r.keyframes, TrajectoryFormat::Tum);
-  if (!a.json.empty()) std::ofstream(a.json) << out.dump(1) << "\n";
+  if (!a.json.empty()) std::ofstream(a.json) << json_text(out, 1) << "\n";
   return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 #include "stillslam/core/text_file.h"
 
 namespace stillslam {
@@ -25,7 +26,7 @@ ReportFiles write_benchmark_report(const std::filesystem::path& dir, const std::
     }
   }
   ReportFiles files{dir / "report.md", dir / "results.json"};
-  write_text_file(files.results, benchmark_to_json(results, options).dump(1) + "\n");
+  write_text_file(files.results, json_text(benchmark_to_json(results, options), 1) + "\n");
   write_text_file(files.report, benchmark_markdown(results, options, plots));
   return files;
 }
