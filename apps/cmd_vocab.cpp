@@ -20,9 +20,11 @@
 
 #include "commands.h"
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/io/image_files.h"
+#include "stillslam/io/input_file.h"
 #include "stillslam/place/keyframe_database.h"
 #include "stillslam/place/vocabulary.h"
 
@@ -51,8 +53,7 @@ std::vector<fs::path> images_in_folder(const fs::path& dir) {
 // A text list: one image path per line (relative to the list's folder), or
 // TUM-style "timestamp path" lines; '#' starts a comment.
 std::vector<fs::path> images_in_list(const fs::path& list) {
-  std::ifstream in(list);
-  if (!in) throw Error("cannot read image list '" + list.string() + "'");
+  std::ifstream in = open_input_file(list, "image list");
   std::vector<fs::path> files;
   std::string line;
   while (std::getline(in, line)) {
@@ -143,7 +144,7 @@ void run_train(TrainArgs args) {
                       {"bytes", fs::file_size(args.out)},
                       {"extract_seconds", extract_s},
                       {"train_seconds", train_s}};
-  std::cout << j.dump(2) << "\n";
+  std::cout << json_text(j, 2) << "\n";
 }
 
 void run_info(const std::string& file) {
@@ -170,7 +171,7 @@ void run_info(const std::string& file) {
                       {"training_descriptors", voc.training_descriptors()},
                       {"bytes", fs::file_size(file)},
                       {"load_ms", load_ms}};
-  std::cout << j.dump(2) << "\n";
+  std::cout << json_text(j, 2) << "\n";
 }
 
 struct QueryArgs {
@@ -196,7 +197,7 @@ void run_query(const QueryArgs& args) {
     nlohmann::json matches = nlohmann::json::array();
     for (const auto& c : db.query(bow, options))
       matches.push_back({{"image", db_files[c.id].string()}, {"score", c.score}, {"common_words", c.common_words}});
-    std::cout << nlohmann::json{{"query", q.string()}, {"words", bow.size()}, {"matches", matches}}.dump() << "\n";
+    std::cout << json_text(nlohmann::json{{"query", q.string()}, {"words", bow.size()}, {"matches", matches}}) << "\n";
   }
 }
 

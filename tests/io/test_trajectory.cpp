@@ -2,6 +2,7 @@
 // from ../shared, and errors naming file and line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -194,8 +195,19 @@ TEST(TrajectoryRealFiles, DetectsFormats) {
 
 TEST(TrajectoryRealFiles, ReadsTumGroundTruth) {
   SKIP_WITHOUT_SHARED();
-  const Trajectory t = read_trajectory(shared_trajectories() / "fr2_desk_groundtruth.txt");
-  ASSERT_EQ(t.size(), 20957u);
+  const fs::path path = shared_trajectories() / "fr2_desk_groundtruth.txt";
+  // Stamp 1311868229.576 appears twice with different poses: an Error naming both lines by default.
+  try {
+    read_trajectory(path);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lines 10862 and 10863"), std::string::npos) << e.what();
+  }
+  const Trajectory t = read_trajectory(path, {}, DuplicateStamps::KeepLast);
+  ASSERT_EQ(t.size(), 20956u);
+  const auto repeated = std::find_if(t.begin(), t.end(), [](const StampedPose& p) { return p.timestamp == 1311868229.576; });
+  ASSERT_NE(repeated, t.end());
+  EXPECT_DOUBLE_EQ(repeated->T_world_cam.translation().x(), 1.4044);  // line 10863, the later one
   EXPECT_DOUBLE_EQ(t[0].timestamp, 1311868163.8697);
   EXPECT_NEAR(t[0].T_world_cam.translation().x(), -0.1357, 1e-12);
   const Eigen::Quaterniond q = Eigen::Quaterniond(-0.4101, 0.6453, -0.5498, 0.3363).normalized();

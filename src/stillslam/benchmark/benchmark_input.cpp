@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/input_file.h"
 
 namespace stillslam {
 namespace {
@@ -36,8 +37,7 @@ std::string folder_name(const fs::path& folder) {
 }  // namespace
 
 std::vector<BenchmarkInput> read_benchmark_list(const fs::path& list_file) {
-  std::ifstream in(list_file);
-  if (!in) throw Error("cannot read the sequence list " + list_file.string() + ": check the path");
+  std::ifstream in = open_input_file(list_file, "sequence list");
   const fs::path base = list_file.parent_path();
   std::vector<BenchmarkInput> inputs;
   std::string line;

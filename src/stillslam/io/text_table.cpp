@@ -2,16 +2,15 @@
 
 #include <cerrno>
 #include <cstdlib>
-#include <fstream>
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/text.h"
+#include "stillslam/io/input_file.h"
 
 namespace stillslam {
 
 std::vector<TextRow> read_text_table(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw Error(file.string() + ": cannot open file");
+  std::ifstream in = open_input_file(file, "file");
   std::vector<TextRow> rows;
   std::string line;
   std::size_t number = 0;

@@ -13,7 +13,8 @@ struct TextRow {
   std::vector<std::string> fields;
 };
 
-// Throws Error when the file cannot be opened.
+// Throws Error when the file is missing, a folder or unreadable (io/input_file.h);
+// a leading UTF-8 BOM is skipped.
 std::vector<TextRow> read_text_table(const std::filesystem::path& file);
 
 // Parses a field as a number; throws Error "<file>:<line>: ..." otherwise.

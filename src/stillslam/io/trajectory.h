@@ -1,22 +1,28 @@
 #pragma once
 // Stamped camera trajectories and their three common text formats.
 //
-//   TUM    `t x y z qx qy qz qw` per line, '#' comments. Timestamps above 1e12
-//          are taken as nanoseconds and converted to seconds. A header comment
-//          that names the columns with qw before qx (e.g. `# t x y z qw qx qy qz`)
-//          switches the reader to w-first quaternions. Extra trailing columns
-//          are ignored (pyslam's 9-column ground truth).
+//   TUM    `t x y z qx qy qz qw` per line (blanks or commas), '#' comments.
+//          Timestamps above 1e12 are taken as nanoseconds and converted to
+//          seconds. A header comment that names the columns with qw before qx
+//          (e.g. `# t x y z qw qx qy qz`) switches the reader to w-first
+//          quaternions. 8 columns, or 9 (pyslam's ground truth, the last ignored).
 //   KITTI  12 numbers per line, the row-major 3x4 [R|t] of T_world_cam. No
 //          stamps: the line index is the time, or a separate times file.
 //   EuRoC  csv `timestamp [ns], p_x, p_y, p_z, q_w, q_x, q_y, q_z, ...`
-//          (extra columns ignored), e.g. state_groundtruth_estimate0/data.csv
-//          and ORB-SLAM3's EuRoC left-camera ground truth files
-//          (V101_GT_leftcam_from_ORB_SLAM3_eval.txt is one of these: ns stamps
-//          written as "1403715274312143104.0000000000", header q_RS_w first).
-//          A header naming qx before qw switches to x-first; a stamp with a real
-//          fraction below 1e12 is taken as seconds.
+//          (extra columns ignored, the same count on every line), e.g.
+//          state_groundtruth_estimate0/data.csv and ORB-SLAM3's EuRoC
+//          left-camera ground truth files (V101_GT_leftcam_from_ORB_SLAM3_eval.txt
+//          is one of these: ns stamps written as "1403715274312143104.0000000000",
+//          header q_RS_w first). A header naming qx before qw switches to
+//          x-first; a stamp with a real fraction below 1e12 is taken as seconds.
 //
-// Every malformed line raises stillslam::Error naming the file and line number.
+// Every malformed line raises stillslam::Error naming the file and line number:
+// a wrong column count, a non-finite number, a position beyond 1e6 m, a stamp
+// beyond 1e10 s, a quaternion whose length is not 1 (within 1e-2), a KITTI 3x3
+// part that is not a rotation. A stamp repeated with a different pose is an
+// Error naming both lines (see DuplicateStamps); repeated with the same pose,
+// a warning, one kept.
+// A leading UTF-8 BOM is skipped; a folder or unreadable path is an Error.
 #include <Eigen/Geometry>
 #include <cstdio>
 #include <filesystem>
@@ -35,19 +41,28 @@ enum class TrajectoryFormat { Tum, Kitti, Euroc };
 TrajectoryFormat parse_trajectory_format(const std::string& name);
 std::string to_string(TrajectoryFormat format);
 
-// Decides the format from the first data line: commas -> EuRoC, 12 numbers ->
-// KITTI, 8 or more numbers -> TUM. Error when the file is missing, empty or
-// matches none of them.
+// Decides the format from the first data line and the header before it:
+// 12 blank-separated numbers -> KITTI, 8 or 9 -> TUM; a csv line (8 or more
+// fields) -> EuRoC when the header names q_w before q_x, TUM when after.
+// Error when the file is missing, empty, has another column count, or is a csv
+// without a header naming the quaternion order (ambiguous: pass the format).
 TrajectoryFormat detect_trajectory_format(const std::filesystem::path& path);
+
+// What to do with a stamp that repeats with a different pose. Error by
+// default; KeepLast keeps the later line as TUM's associate.py does (with a
+// warning naming the lines): the TUM fr2/desk ground truth has one such pair.
+enum class DuplicateStamps { Error, KeepLast };
 
 // Reads any of the three formats (detected when `format` is empty). KITTI
 // poses get their line index as timestamp.
 Trajectory read_trajectory(const std::filesystem::path& path,
-                           std::optional<TrajectoryFormat> format = {});
+                           std::optional<TrajectoryFormat> format = {},
+                           DuplicateStamps duplicates = DuplicateStamps::Error);
 
 // KITTI poses with one timestamp per line from `times_path` (same line count).
 Trajectory read_kitti_trajectory(const std::filesystem::path& path,
-                                 const std::filesystem::path& times_path);
+                                 const std::filesystem::path& times_path,
+                                 DuplicateStamps duplicates = DuplicateStamps::Error);
 
 // Writes the whole trajectory (full double precision; EuRoC stamps in integer ns).
 void write_trajectory(const std::filesystem::path& path, const Trajectory& trajectory,

@@ -1,14 +1,13 @@
 #include "stillslam/io/yaml_reader.h"
 
 #include <cmath>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include <opencv2/core.hpp>
 #include <spdlog/spdlog.h>
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/input_file.h"
 
 namespace stillslam {
 
@@ -32,19 +31,20 @@ std::optional<double> node_number(const cv::FileNode& node) {
 
 YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
+  if (!std::filesystem::exists(file, ec)) {
     throw Error(file.string() + ": settings file not found (check the path given to --config)");
   }
+  // Read here (folder, permission and BOM handled by input_file.h), parsed from memory.
+  const std::string text = read_input_file(file, "settings file");
+  constexpr int kFromMemory = cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML;
   try {
-    storage_.open(file.string(), cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
+    storage_.open(text, kFromMemory);
   } catch (const cv::Exception& e) {
-    std::stringstream buffer;
-    buffer << std::ifstream(file).rdbuf();
-    const std::string repaired = add_missing_row_commas(buffer.str());
+    const std::string repaired = add_missing_row_commas(text);
     bool ok = false;
-    if (repaired != buffer.str()) {
+    if (repaired != text) {
       try {
-        ok = storage_.open(repaired, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+        ok = storage_.open(repaired, kFromMemory);
       } catch (const cv::Exception&) {
         ok = false;
       }
