@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/io/timestamp_association.h"
 
 namespace stillslam {
@@ -103,8 +104,19 @@ double AssociationOptions::effective_max_dt() const {
   return method == AssociationMethod::Greedy ? 0.02 : 0.01;
 }
 
+void AssociationOptions::check() const {
+  if (!(max_dt >= 0) || !std::isfinite(max_dt)) {
+    throw OptionError("AssociationOptions.max_dt", option_check::text(max_dt),
+                      "must be a finite number >= 0 (0 picks the method's default)");
+  }
+  if (!std::isfinite(offset)) {
+    throw OptionError("AssociationOptions.offset", option_check::text(offset), "must be a finite number of seconds");
+  }
+}
+
 std::vector<IndexPair> associate(const std::vector<double>& gt_stamps, const std::vector<double>& est_stamps,
                                  const AssociationOptions& options) {
+  options.check();
   const double max_dt = options.effective_max_dt();
   if (options.method == AssociationMethod::Greedy) return associate_greedy(gt_stamps, est_stamps, max_dt, options.offset);
   return associate_nearest(gt_stamps, est_stamps, max_dt, options.offset);

@@ -27,6 +27,9 @@ struct AssociationOptions {
   double offset = 0;  // added to the estimate's stamps before matching (seconds)
 
   double effective_max_dt() const;
+  // OptionError for a NaN, negative or infinite max_dt or a non-finite offset
+  // (either would silently give the default or no pairs).
+  void check() const;
 };
 
 struct IndexPair {

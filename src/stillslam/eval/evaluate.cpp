@@ -1,5 +1,7 @@
 #include "stillslam/eval/evaluate.h"
 
+#include <spdlog/spdlog.h>
+
 #include <sstream>
 
 #include "stillslam/core/error.h"
@@ -53,6 +55,11 @@ EvaluationResult evaluate(const Trajectory& gt, const Trajectory& est, const Eva
   result.rpe = relative_errors(result.gt, result.est_aligned, result.rpe_pairs);
   result.rpe_trans_stats = compute_statistics(result.rpe.translation);
   result.rpe_rot_stats = compute_statistics(result.rpe.rotation_deg);
+  if (result.rpe_pairs.empty()) {
+    spdlog::warn("RPE: no pose pair is {} {} apart among the {} associated poses; the RPE is absent (n/a, null in "
+                 "JSON), lower --rpe-delta to get one",
+                 options.rpe.delta, to_string(options.rpe.unit), result.pairs);
+  }
   return result;
 }
 

@@ -39,7 +39,8 @@ struct EvaluationResult {
 };
 
 // Error when no stamps associate (naming max_dt) or alignment is impossible.
-// An RPE delta longer than the sequence leaves the RPE empty (count 0).
+// An RPE delta longer than the sequence leaves the RPE empty (count 0, NaN
+// values) with a warning. OptionError for NaN or negative max_dt, non-finite offset.
 EvaluationResult evaluate(const Trajectory& gt, const Trajectory& est, const EvaluationOptions& options);
 
 // Reads both files (formats detected; see io/trajectory.h) and evaluates them.

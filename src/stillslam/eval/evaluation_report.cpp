@@ -4,10 +4,15 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/json_text.h"
 
 namespace stillslam {
 
 nlohmann::json to_json(const ErrorStatistics& stats) {
+  if (stats.empty()) {  // absent, not zero
+    return {{"rmse", nullptr}, {"mean", nullptr}, {"median", nullptr}, {"std", nullptr},
+            {"min", nullptr},  {"max", nullptr},  {"count", 0}};
+  }
   return {{"rmse", stats.rmse},     {"mean", stats.mean}, {"median", stats.median}, {"std", stats.std},
           {"min", stats.min},       {"max", stats.max},   {"count", stats.count}};
 }
@@ -47,7 +52,7 @@ void write_evaluation_json(const std::filesystem::path& path, const EvaluationRe
   nlohmann::json json = evaluation_to_json(result, options);
   for (const auto& [key, value] : extra.items()) json[key] = value;
   std::ofstream out(path);
-  out << json.dump(2) << '\n';
+  out << json_text(json, 2) << '\n';  // a non-UTF-8 input path must not throw
   out.flush();
   if (!out) throw Error("cannot write " + path.string() + "; check that its folder exists and is writable");
 }
@@ -67,6 +72,12 @@ std::string format_evaluation_table(const EvaluationResult& result, const Evalua
                 "min", "max");
   out += line;
   auto row = [&](const char* name, const ErrorStatistics& s) {
+    if (s.empty()) {
+      std::snprintf(line, sizeof(line), "%-16s %10s %10s %10s %10s %10s %10s  (no pairs)\n", name, "n/a", "n/a", "n/a",
+                    "n/a", "n/a", "n/a");
+      out += line;
+      return;
+    }
     std::snprintf(line, sizeof(line), "%-16s %10.6f %10.6f %10.6f %10.6f %10.6f %10.6f\n", name, s.rmse, s.mean,
                   s.median, s.std, s.min, s.max);
     out += line;

@@ -11,7 +11,7 @@ namespace stillslam {
 nlohmann::json to_json(const ErrorStatistics& stats);
 
 // Keys: pairs, gt_poses, est_poses, ape{rmse,mean,median,std,min,max,count},
-// rpe_trans{...} (m), rpe_rot{...} (deg), rpe{delta,unit,all_pairs,pairs},
+// rpe_trans{...} (m), rpe_rot{...} (deg) (values null and count 0 without pairs), rpe{delta,unit,all_pairs,pairs},
 // alignment{type,scale,rotation (row-major 3x3),translation},
 // association{method,max_dt,offset}.
 nlohmann::json evaluation_to_json(const EvaluationResult& result, const EvaluationOptions& options);

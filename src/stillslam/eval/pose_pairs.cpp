@@ -70,7 +70,9 @@ std::string to_string(DeltaUnit unit) {
 }
 
 std::vector<PosePair> select_pose_pairs(const Trajectory& poses, const PosePairOptions& options) {
-  if (!(options.delta > 0)) throw Error("the RPE delta must be positive (--rpe-delta)");
+  if (!(options.delta > 0) || !std::isfinite(options.delta)) {
+    throw Error("the RPE delta must be a positive finite number (--rpe-delta)");
+  }
   const std::size_t n = poses.size();
   if (n < 2) return {};
   switch (options.unit) {

@@ -28,7 +28,8 @@ struct PosePairOptions {
 using PosePair = std::pair<std::size_t, std::size_t>;
 
 // Pairs over `poses` (usually the ground truth of the associated sequence, as evo
-// measures path length on the reference). Error for a non-positive delta.
+// measures path length on the reference). Error for a non-positive or
+// non-finite delta, or a fractional one in frames.
 std::vector<PosePair> select_pose_pairs(const Trajectory& poses, const PosePairOptions& options);
 
 }  // namespace stillslam
