@@ -103,7 +103,8 @@ TEST(TrajectoryValidation, AbsurdValuesAreRejectedWithFileAndLine) {
                         Case{"2.0 0 0 0 0 0 0 0", "has length 0, expected 1"},
                         Case{"1e300 0 0 0 0 0 0 1", "line 2: timestamp '1e300' is beyond 1e+10 s"},
                         Case{"2.0 0 nan 0 0 0 0 1", "'nan' is not a finite number"},
-                        Case{"2.0 0 0 inf 0 0 0 1", "'inf' is not a finite number"}}) {
+                        Case{"2.0 0 0 inf 0 0 0 1", "'inf' is not a finite number"},
+                        Case{"5e11 0 0 0 0 0 0 1", "timestamp '5e11' is beyond 1e+10 s"}}) {
     const fs::path path = dir.write("absurd.txt", good + c.line + "\n");
     const std::string message = error_of([&] { read_trajectory(path); });
     EXPECT_TRUE(contains(message, path.string() + ", line 2")) << message;
@@ -112,6 +113,11 @@ TEST(TrajectoryValidation, AbsurdValuesAreRejectedWithFileAndLine) {
   // KITTI: the 3x3 part must be a rotation, the translation bounded.
   const fs::path scaled = dir.write("scaled.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n2 0 0 0 0 2 0 0 0 0 2 0\n");
   EXPECT_TRUE(contains(error_of([&] { read_trajectory(scaled); }), "line 2: the 3x3 part is not a rotation matrix"));
+  // A first pose line with a NaN stamp is an error, not a header to skip.
+  const fs::path nan_first = dir.write("nan_first.txt", "nan 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0 1\n");
+  EXPECT_TRUE(contains(error_of([&] { read_trajectory(nan_first); }), "line 1: 'nan' is not a finite number"));
+  const fs::path nan_csv = dir.write("nan_first.csv", "#t,x,y,z,qw,qx,qy,qz\nnan,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n");
+  EXPECT_TRUE(contains(error_of([&] { read_trajectory(nan_csv); }), "line 2: 'nan' is not a finite number"));
   const fs::path far = dir.write("far.txt", "1 0 0 0 0 1 0 0 0 0 1 3e7\n");
   EXPECT_TRUE(contains(error_of([&] { read_trajectory(far); }), "line 1: position (0, 0, 3e+07) is beyond 1e+06 m"));
 }

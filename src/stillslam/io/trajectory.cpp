@@ -106,9 +106,16 @@ bool is_comment_or_blank(const std::string& text) {
   return t.empty() || t.front() == '#' || t.front() == '%';
 }
 
+// True when the first field reads as a number, finite or not ("nan" and "inf"
+// too, so a first pose line holding them is an error, not a header skipped).
 bool starts_with_number(const std::string& text, bool commas) {
   const auto tokens = split_tokens(trim(text), commas);
-  return !tokens.empty() && parse_finite_number(tokens.front()).has_value();
+  if (tokens.empty()) return false;
+  const std::string& token = tokens.front();
+  const char* begin = token.data() + (token.front() == '+' ? 1 : 0);
+  double value = 0;
+  const auto [ptr, ec] = std::from_chars(begin, token.data() + token.size(), value);
+  return ptr == token.data() + token.size() && (ec == std::errc() || ec == std::errc::result_out_of_range);
 }
 
 double checked_stamp(const fs::path& path, const Line& line, const std::string& token, double seconds) {
@@ -125,7 +132,7 @@ double parse_stamp(const fs::path& path, const Line& line, const std::string& to
   if (std::abs(*value) > kNanosecondStampThreshold) {
     return checked_stamp(path, line, token, *parse_nanoseconds_as_seconds(token));
   }
-  return *value;
+  return checked_stamp(path, line, token, *value);
 }
 
 Eigen::Vector3d checked_position(const fs::path& path, const Line& line, double x, double y, double z) {
@@ -184,7 +191,7 @@ struct ParsedPose {
 double parse_euroc_stamp(const fs::path& path, const Line& line, const std::string& token) {
   const auto value = parse_finite_number(token);
   if (!value) fail(path, line.number, "timestamp '" + token + "' is not a finite number");
-  if (*value < kNanosecondStampThreshold && *value != std::floor(*value)) return *value;
+  if (*value < kNanosecondStampThreshold && *value != std::floor(*value)) return checked_stamp(path, line, token, *value);
   return checked_stamp(path, line, token, *parse_nanoseconds_as_seconds(token));
 }
 
