@@ -1,11 +1,16 @@
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <iostream>
+#include <memory>
 
 #include "commands.h"
 #include "stillslam/core/error.h"
 
 int main(int argc, char** argv) {
+  // Log lines (info, warnings, errors) go to stderr; stdout carries only the
+  // results the commands print, so `stillslam eval ... > results.txt` holds no log.
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>("", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   CLI::App app{"stillslam: feature-based visual SLAM that ignores moving people and objects"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "stillslam 0.1");
