@@ -96,6 +96,11 @@ TEST_F(EvalCommandChecks, CommaSeparatedTumIsNotReadAsEuroc) {
   EXPECT_EQ(with_commas.at("rpe_trans").at("rmse").get<double>(), rpe);
   EXPECT_EQ(with_commas.at("rpe_rot").at("rmse").get<double>(), spaces.at("rpe_rot").at("rmse").get<double>());
   EXPECT_EQ(with_commas.at("pairs").get<int>(), 60);
+  // --format sets both files' format (a unit quaternion is one in any order: only a header or a flag can tell).
+  const auto both = eval(gt_est(csv) + " --format tum --json '" + (dir_ / "both.json").string() + "'");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_EQ(read_json(dir_ / "both.json").at("rpe_trans").at("rmse").get<double>(), rpe);
+  EXPECT_EQ(read_json(dir_ / "both.json").at("inputs").at("est_format").get<std::string>(), "tum");
 }
 
 TEST_F(EvalCommandChecks, KittiRowsWithElevenNumbersFail) {

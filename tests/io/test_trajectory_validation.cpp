@@ -97,7 +97,7 @@ TEST(TrajectoryValidation, AbsurdValuesAreRejectedWithFileAndLine) {
   struct Case {
     std::string line, expected;
   };
-  for (const Case& c : {Case{"2.0 1e300 0 0 0 0 0 1", "line 2: position (1e+300, 0, 0) is beyond 1e+06 m"},
+  for (const Case& c : {Case{"2.0 1e300 0 0 0 0 0 1", "line 2: position (1e+300, 0, 0) is beyond 1e+08 m"},
                         Case{"2.0 0 0 0 0 0 0 1e300", "has length 1e+300, expected 1"},
                         Case{"2.0 0 0 0 0 0 0 2", "has length 2, expected 1"},
                         Case{"2.0 0 0 0 0 0 0 0", "has length 0, expected 1"},
@@ -118,8 +118,10 @@ TEST(TrajectoryValidation, AbsurdValuesAreRejectedWithFileAndLine) {
   EXPECT_TRUE(contains(error_of([&] { read_trajectory(nan_first); }), "line 1: 'nan' is not a finite number"));
   const fs::path nan_csv = dir.write("nan_first.csv", "#t,x,y,z,qw,qx,qy,qz\nnan,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n");
   EXPECT_TRUE(contains(error_of([&] { read_trajectory(nan_csv); }), "line 2: 'nan' is not a finite number"));
-  const fs::path far = dir.write("far.txt", "1 0 0 0 0 1 0 0 0 0 1 3e7\n");
-  EXPECT_TRUE(contains(error_of([&] { read_trajectory(far); }), "line 1: position (0, 0, 3e+07) is beyond 1e+06 m"));
+  const fs::path far = dir.write("far.txt", "1 0 0 0 0 1 0 0 0 0 1 3e9\n");
+  EXPECT_TRUE(contains(error_of([&] { read_trajectory(far); }), "line 1: position (0, 0, 3e+09) is beyond 1e+08 m"));
+  // Georeferenced positions (UTM: 5.4e6 m northing) are real trajectories.
+  EXPECT_EQ(read_trajectory(dir.write("utm.txt", "1.0 458074.6 5429380.2 162.9 0 0 0 1\n")).size(), 1u);
 }
 
 TEST(TrajectoryValidation, RepeatedStamps) {

@@ -65,7 +65,8 @@ std::optional<double> parse_nanoseconds_as_seconds(const std::string& token) {
 
 // Values no real trajectory holds: they come from a damaged file, and would
 // reach the statistics as inf or NaN.
-constexpr double kMaxAbsPosition = 1e6;      // metres
+// Metres: georeferenced files (UTM northings up to 1e7 m, ECEF 6.4e6 m) stay inside.
+constexpr double kMaxAbsPosition = 1e8;
 constexpr double kMaxAbsStamp = 1e10;        // seconds (year 2286)
 constexpr double kQuaternionNormTolerance = 1e-2;  // files round to 4+ digits
 constexpr double kRotationTolerance = 1e-2;        // KITTI rounds R to 6-9 digits

@@ -17,7 +17,7 @@
 //          x-first; a stamp with a real fraction below 1e12 is taken as seconds.
 //
 // Every malformed line raises stillslam::Error naming the file and line number:
-// a wrong column count, a non-finite number, a position beyond 1e6 m, a stamp
+// a wrong column count, a non-finite number, a position beyond 1e8 m, a stamp
 // beyond 1e10 s, a quaternion whose length is not 1 (within 1e-2), a KITTI 3x3
 // part that is not a rotation. A stamp repeated with a different pose is an
 // Error naming both lines (see DuplicateStamps); repeated with the same pose,
