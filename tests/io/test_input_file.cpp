@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include <unistd.h>
+
 #include "io/temp_dir.h"
 #include "stillslam/core/error.h"
 #include "stillslam/io/camera_settings.h"
@@ -47,6 +49,16 @@ TEST(InputFile, FolderAndMissingPathAreNamed) {
   const fs::path missing = dir.path() / "missing.txt";
   EXPECT_TRUE(contains(error_of([&] { read_trajectory(missing); }), missing.string() + " does not exist"));
   EXPECT_TRUE(contains(error_of([&] { read_text_table(missing); }), missing.string() + " does not exist"));
+}
+
+TEST(InputFile, UnreadableFileNamesThePermission) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads every file: no permission error to provoke";
+  test::TempDir dir;
+  const fs::path locked = dir.write("locked.txt", "1.0 0 0 0 0 0 0 1\n");
+  fs::permissions(locked, fs::perms::none);
+  EXPECT_TRUE(contains(error_of([&] { read_trajectory(locked); }),
+                       "trajectory file " + locked.string() + " cannot be read: permission denied"));
+  fs::permissions(locked, fs::perms::owner_all);
 }
 
 TEST(InputFile, LeadingByteOrderMarkIsSkipped) {
