@@ -27,7 +27,7 @@ struct EvalArgs {
   double rpe_delta = 1;
   std::string rpe_unit = "frames";
   bool rpe_all_pairs = false;
-  std::string duplicate_stamps = "error";
+  std::string duplicate_stamps = "last";
   std::string json, plot;
 };
 
@@ -126,8 +126,8 @@ void add_eval_command(CLI::App& app) {
   cmd->add_flag("--rpe-all-pairs", args->rpe_all_pairs,
                 "Start an RPE pair at every pose (default: consecutive, non-overlapping steps as evo)");
   cmd->add_option("--duplicate-stamps", args->duplicate_stamps,
-                  "A stamp repeated with a different pose: error, or last (keep the later line, as TUM's "
-                  "associate.py; the TUM fr2/desk ground truth needs it)")
+                  "A stamp repeated with a different pose: last (keep the later line with a warning, as TUM's "
+                  "associate.py; the TUM fr2/desk ground truth has one) or error (refuse the file)")
       ->check(CLI::IsMember({"error", "last"}))
       ->capture_default_str();
   cmd->add_option("--json", args->json, "Write the results as JSON to this file");

@@ -196,14 +196,14 @@ TEST(TrajectoryRealFiles, DetectsFormats) {
 TEST(TrajectoryRealFiles, ReadsTumGroundTruth) {
   SKIP_WITHOUT_SHARED();
   const fs::path path = shared_trajectories() / "fr2_desk_groundtruth.txt";
-  // Stamp 1311868229.576 appears twice with different poses: an Error naming both lines by default.
+  // Stamp 1311868229.576 appears twice with different poses: with DuplicateStamps::Error an Error naming both lines.
   try {
-    read_trajectory(path);
+    read_trajectory(path, {}, DuplicateStamps::Error);
     FAIL() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("lines 10862 and 10863"), std::string::npos) << e.what();
   }
-  const Trajectory t = read_trajectory(path, {}, DuplicateStamps::KeepLast);
+  const Trajectory t = read_trajectory(path);  // KeepLast, the default
   ASSERT_EQ(t.size(), 20956u);
   const auto repeated = std::find_if(t.begin(), t.end(), [](const StampedPose& p) { return p.timestamp == 1311868229.576; });
   ASSERT_NE(repeated, t.end());

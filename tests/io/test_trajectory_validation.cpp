@@ -131,10 +131,10 @@ TEST(TrajectoryValidation, RepeatedStamps) {
                                                       "1.0 0 0 0 0 0 0 1\n"
                                                       "2.0 1 0 0 0 0 0 1\n"
                                                       "1.0 5 0 0 0 0 0 1\n");
-  const std::string message = error_of([&] { read_trajectory(conflict); });
+  const std::string message = error_of([&] { read_trajectory(conflict, {}, DuplicateStamps::Error); });
   EXPECT_TRUE(contains(message, conflict.string() + ", lines 2 and 4: the same timestamp 1 s")) << message;
   EXPECT_TRUE(contains(message, "--duplicate-stamps last")) << message;
-  const Trajectory last = read_trajectory(conflict, {}, DuplicateStamps::KeepLast);
+  const Trajectory last = read_trajectory(conflict);  // KeepLast, the default
   ASSERT_EQ(last.size(), 2u);
   EXPECT_EQ(last[0].timestamp, 2.0);
   EXPECT_EQ(last[1].T_world_cam.translation().x(), 5.0);  // line 4 won
@@ -148,7 +148,7 @@ TEST(TrajectoryValidation, RepeatedStamps) {
   // KITTI stamps from a times file: the lines named are the times file's.
   const fs::path poses = dir.write("poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 1 0 1 0 0 0 0 1 0\n");
   const fs::path times = dir.write("times.txt", "0.5\n0.5\n");
-  const std::string kitti = error_of([&] { read_kitti_trajectory(poses, times); });
+  const std::string kitti = error_of([&] { read_kitti_trajectory(poses, times, DuplicateStamps::Error); });
   EXPECT_TRUE(contains(kitti, "KITTI times file " + times.string())) << kitti;
   EXPECT_TRUE(contains(kitti, "lines 1 and 2")) << kitti;
 }

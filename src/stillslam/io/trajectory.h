@@ -19,9 +19,9 @@
 // Every malformed line raises stillslam::Error naming the file and line number:
 // a wrong column count, a non-finite number, a position beyond 1e8 m, a stamp
 // beyond 1e10 s, a quaternion whose length is not 1 (within 1e-2), a KITTI 3x3
-// part that is not a rotation. A stamp repeated with a different pose is an
-// Error naming both lines (see DuplicateStamps); repeated with the same pose,
-// a warning, one kept.
+// part that is not a rotation. A stamp repeated with a different pose keeps
+// the later line with a warning naming both lines, or is an Error (see
+// DuplicateStamps); repeated with the same pose, a warning, one kept.
 // A leading UTF-8 BOM is skipped; a folder or unreadable path is an Error.
 #include <Eigen/Geometry>
 #include <cstdio>
@@ -48,21 +48,22 @@ std::string to_string(TrajectoryFormat format);
 // without a header naming the quaternion order (ambiguous: pass the format).
 TrajectoryFormat detect_trajectory_format(const std::filesystem::path& path);
 
-// What to do with a stamp that repeats with a different pose. Error by
-// default; KeepLast keeps the later line as TUM's associate.py does (with a
-// warning naming the lines): the TUM fr2/desk ground truth has one such pair.
+// What to do with a stamp that repeats with a different pose. KeepLast (the
+// default) keeps the later line as TUM's associate.py does, with a warning
+// naming the lines: the TUM fr2/desk ground truth has one such pair and must
+// evaluate as the TUM tools do. Error refuses the file.
 enum class DuplicateStamps { Error, KeepLast };
 
 // Reads any of the three formats (detected when `format` is empty). KITTI
 // poses get their line index as timestamp.
 Trajectory read_trajectory(const std::filesystem::path& path,
                            std::optional<TrajectoryFormat> format = {},
-                           DuplicateStamps duplicates = DuplicateStamps::Error);
+                           DuplicateStamps duplicates = DuplicateStamps::KeepLast);
 
 // KITTI poses with one timestamp per line from `times_path` (same line count).
 Trajectory read_kitti_trajectory(const std::filesystem::path& path,
                                  const std::filesystem::path& times_path,
-                                 DuplicateStamps duplicates = DuplicateStamps::Error);
+                                 DuplicateStamps duplicates = DuplicateStamps::KeepLast);
 
 // Writes the whole trajectory (full double precision; EuRoC stamps in integer ns).
 void write_trajectory(const std::filesystem::path& path, const Trajectory& trajectory,
