@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/text_file.h"
 
 namespace stillslam {
 
@@ -46,10 +47,7 @@ void write_evaluation_json(const std::filesystem::path& path, const EvaluationRe
                            const EvaluationOptions& options, const nlohmann::json& extra) {
   nlohmann::json json = evaluation_to_json(result, options);
   for (const auto& [key, value] : extra.items()) json[key] = value;
-  std::ofstream out(path);
-  out << json.dump(2) << '\n';
-  out.flush();
-  if (!out) throw Error("cannot write " + path.string() + "; check that its folder exists and is writable");
+  write_text_file(path, json.dump(2) + '\n');
 }
 
 std::string format_evaluation_table(const EvaluationResult& result, const EvaluationOptions& options) {
