@@ -70,14 +70,13 @@ TEST_F(AtomicFile, AFolderAsTargetIsAnErrorNamingItAndNothingIsLeft) {
   EXPECT_TRUE(fs::is_empty(dir_ / "maps"));
 }
 
-TEST_F(AtomicFile, AMissingFolderIsAnErrorNamingTheFile) {
+TEST_F(AtomicFile, AMissingFolderIsAnErrorNamingTheFileAndWhatItIs) {
   try {
-    write_file_atomically(dir_ / "missing" / "a.txt", "x");
+    write_file_atomically(dir_ / "missing" / "a.txt", "x", "map file");
     FAIL() << "a missing folder must fail";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find((dir_ / "missing" / "a.txt").string() + ": No such file or directory"),
-              std::string::npos)
-        << e.what();
+    EXPECT_EQ(std::string(e.what()), "cannot write map file " + (dir_ / "missing" / "a.txt").string() +
+                                         ": No such file or directory; check that its folder exists and is writable");
   }
 }
 

@@ -308,7 +308,7 @@ TEST_F(RunOutputs, AFullDiskKeepsWhatFitsAndNamesWhatDidNot) {
   EXPECT_EQ(describe_status(child.wait()), "exit 1") << child.output();
   const std::string log = child.output();
   EXPECT_NE(log.find("cannot write " + (out / "stats.json").string() + ": File too large"), std::string::npos) << log;
-  EXPECT_NE(log.find("cannot write " + map.string() + ": File too large"), std::string::npos) << log;
+  EXPECT_NE(log.find("cannot write map file " + map.string() + ": File too large"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out / "stats.json"));
   EXPECT_FALSE(fs::exists(map));
   const std::size_t live = count_newlines(read_text(out / "trajectory_live.txt"));
@@ -338,7 +338,7 @@ TEST_F(RunOutputs, AFullDiskStopsTheLiveFileAtAWholeLineWithOneWarning) {
   EXPECT_GT(text.size(), 1000u);  // every line is under 500 bytes
   EXPECT_EQ(text.back(), '\n');
   EXPECT_EQ(read_trajectory(out / "trajectory_live.txt").size(), count_newlines(text));
-  EXPECT_NE(log.find("cannot write " + (out / "trajectory.txt").string() + ": File too large"), std::string::npos)
+  EXPECT_NE(log.find("cannot write trajectory file " + (out / "trajectory.txt").string() + ": File too large"), std::string::npos)
       << log;
   EXPECT_EQ(leftovers(out), std::vector<std::string>{});
 }

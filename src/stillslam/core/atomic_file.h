@@ -30,17 +30,17 @@ inline std::filesystem::path temporary_path_for(const std::filesystem::path& pat
   return tmp;
 }
 
-inline void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+// `kind` names what the file is in the message ("cannot write map file X: ...").
+inline void write_file_atomically(const std::filesystem::path& path, std::string_view bytes,
+                                  std::string_view kind = {}) {
+  const std::string what = "cannot write " + (kind.empty() ? std::string() : std::string(kind) + " ") + path.string();
   const std::filesystem::path tmp = temporary_path_for(path);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) {
-    throw Error("cannot write " + path.string() + ": " + system_reason(errno) +
-                "; check that its folder exists and is writable");
-  }
+  if (fd < 0) throw Error(what + ": " + system_reason(errno) + "; check that its folder exists and is writable");
   auto fail = [&](int err, bool close_fd) {
     if (close_fd) ::close(fd);
     ::unlink(tmp.c_str());
-    throw Error("cannot write " + path.string() + ": " + system_reason(err));
+    throw Error(what + ": " + system_reason(err));
   };
   std::size_t done = 0;
   while (done < bytes.size()) {

@@ -337,7 +337,7 @@ void write_trajectory(const fs::path& path, const Trajectory& trajectory, Trajec
   std::string text;
   if (format == TrajectoryFormat::Euroc) text += std::string(kEurocHeader) + '\n';
   for (const StampedPose& pose : trajectory) text += format_trajectory_line(pose, format) + '\n';
-  write_file_atomically(path, text);
+  write_file_atomically(path, text, "trajectory file");
 }
 
 TrajectoryWriter::TrajectoryWriter(const fs::path& path, TrajectoryFormat format)

@@ -454,7 +454,7 @@ MapFileStats save_map_file(const std::filesystem::path& path, const MapFileConte
   payload.bytes().shrink_to_fit();
   file.put(fnv1a(out.data(), out.size()));
 
-  write_file_atomically(path, file.bytes());
+  write_file_atomically(path, file.bytes(), "map file");
 
   stats.bytes = file.bytes().size();
   stats.maps = maps.size();
