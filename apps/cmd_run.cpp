@@ -38,8 +38,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kExitCodes =
-    "Exit codes: 0 the run finished (all frames, or --max-frames); 1 an error (bad input, an output that could "
-    "not be written; the outputs that could be written are kept); 128+N stopped by signal N with all outputs "
+    "Exit codes: 0 the run finished (all frames, or --max-frames); 1 an error (bad input or usage, an output "
+    "that could not be written; the outputs that could be written are kept); 2 an internal error (a bug); 128+N stopped by signal N with all outputs "
     "written: 130 SIGINT (Ctrl-C), 143 SIGTERM, 129 SIGHUP (terminal or ssh session closed), 131 SIGQUIT. "
     "stats.json's \"end\" says the same: reason finished | max_frames | interrupted | input_error, the signal, "
     "frames_processed, frames_in_input.";

@@ -275,6 +275,16 @@ TEST_F(RunOutputs, SigkillAtRandomMomentsLeavesAReadableLiveTrajectory) {
   std::cout << with_poses << " of 20 killed runs had written poses\n";
 }
 
+// A usage error is an error like any other: exit 1 (not CLI11's 1xx codes).
+TEST_F(RunOutputs, UsageErrorsExitOne) {
+  ChildProcess missing_input({"run", "--config", settings_->string(), "--output", "x"});
+  EXPECT_EQ(describe_status(missing_input.wait()), "exit 1") << missing_input.output();
+  EXPECT_NE(missing_input.output().find("--input is required"), std::string::npos) << missing_input.output();
+  ChildProcess help({"run", "--help"});
+  EXPECT_EQ(describe_status(help.wait()), "exit 0");
+  EXPECT_NE(help.output().find("130 SIGINT (Ctrl-C), 143 SIGTERM, 129 SIGHUP"), std::string::npos) << help.output();
+}
+
 TEST_F(RunOutputs, SaveMapToAFolderIsRefusedBeforeTheRun) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
