@@ -79,6 +79,15 @@ class ChildProcess {
   pid_t pid() const { return pid_; }
   void send(int signal) const { ::kill(pid_, signal); }
 
+  // True once the child has exited (then wait() returns at once).
+  bool exited() {
+    if (!waited_ && ::waitpid(pid_, &status_, WNOHANG) == pid_) {
+      waited_ = true;
+      if (reader_.joinable()) reader_.join();
+    }
+    return waited_;
+  }
+
   // Waits for the exit; the raw waitpid status.
   int wait() {
     if (!waited_) {

@@ -55,18 +55,22 @@ std::vector<std::string> leftovers(const fs::path& dir) {
   return found;
 }
 
-// Waits (no timing assertion: the test's own timeout is the limit) until
-// `file` holds at least `lines` whole lines.
-void wait_for_lines(const fs::path& file, std::size_t lines) {
-  while (count_newlines(read_text(file)) < lines) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+// Waits (no timing assertion) until `file` holds at least `lines` whole
+// lines; false when the child exited first.
+bool wait_for_lines(ChildProcess& child, const fs::path& file, std::size_t lines) {
+  while (count_newlines(read_text(file)) < lines) {
+    if (child.exited()) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
 }
 
-// Waits until `signal` is no longer pending for process `pid` (its
-// /proc/PID/status ShdPnd mask), i.e. the process has taken it.
-void wait_until_taken(pid_t pid, int signal) {
+// Waits until `signal` is no longer pending for the child (its
+// /proc/PID/status ShdPnd mask), i.e. it has taken it, or it has exited.
+void wait_until_taken(ChildProcess& child, int signal) {
   const unsigned long long bit = 1ULL << (signal - 1);
-  for (;;) {
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  while (!child.exited()) {
+    std::ifstream status("/proc/" + std::to_string(child.pid()) + "/status");
     std::string line;
     unsigned long long pending = 0;
     while (std::getline(status, line)) {
@@ -185,7 +189,7 @@ TEST_F(RunOutputs, EachHandledSignalWritesCompleteOutputsAndALoadableMap) {
     const fs::path out = dir.path() / "out";
     const fs::path map = dir.path() / "room.map";
     ChildProcess child(run_args(out, {"--save-map", map.string()}));
-    wait_for_lines(out / "trajectory_live.txt", 8);
+    ASSERT_TRUE(wait_for_lines(child, out / "trajectory_live.txt", 8)) << child.output();
     child.send(signal);
     EXPECT_EQ(describe_status(child.wait()), "exit " + std::to_string(128 + signal)) << child.output();
     const nlohmann::json stats = expect_complete_outputs(out);
@@ -212,11 +216,11 @@ TEST_F(RunOutputs, ASecondSignalDoesNotCutTheOutputs) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
   ChildProcess child(run_args(out));
-  wait_for_lines(out / "trajectory_live.txt", 8);
+  ASSERT_TRUE(wait_for_lines(child, out / "trajectory_live.txt", 8)) << child.output();
   child.send(SIGTERM);
   // Pending signals are taken lowest number first: the next ones are sent
   // once SIGTERM has been taken.
-  wait_until_taken(child.pid(), SIGTERM);
+  wait_until_taken(child, SIGTERM);
   child.send(SIGINT);
   child.send(SIGHUP);
   EXPECT_EQ(describe_status(child.wait()), "exit 143") << child.output();
@@ -260,7 +264,9 @@ TEST_F(RunOutputs, SigkillAtRandomMomentsLeavesAReadableLiveTrajectory) {
     SCOPED_TRACE("kill " + std::to_string(i));
     const fs::path out = dir.path() / ("out" + std::to_string(i));
     ChildProcess child(run_args(out));
-    if (i % 2 == 1) wait_for_lines(out / "trajectory_live.txt", 1);
+    if (i % 2 == 1) {
+      ASSERT_TRUE(wait_for_lines(child, out / "trajectory_live.txt", 1)) << child.output();
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(random)));
     child.send(SIGKILL);
     child.wait();
