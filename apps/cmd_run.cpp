@@ -39,8 +39,9 @@ namespace fs = std::filesystem;
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 the run finished (all frames, or --max-frames); 1 an error (bad input or usage, an output "
-    "that could not be written; the outputs that could be written are kept); 2 an internal error (a bug); 128+N stopped by signal N with all outputs "
-    "written: 130 SIGINT (Ctrl-C), 143 SIGTERM, 129 SIGHUP (terminal or ssh session closed), 131 SIGQUIT. "
+    "that could not be written; the outputs that could be written are kept); 2 an internal error (a bug); "
+    "128+N stopped by signal N with all outputs written: 130 SIGINT (Ctrl-C), 143 SIGTERM, 129 SIGHUP "
+    "(terminal or ssh session closed), 131 SIGQUIT. "
     "stats.json's \"end\" says the same: reason finished | max_frames | interrupted | input_error, the signal, "
     "frames_processed, frames_in_input.";
 
@@ -170,7 +171,8 @@ void run(const RunArgs& args) {
   }
   const std::vector<std::string> write_errors = write_run_outputs(out_dir, result, stats);
   if (write_errors.empty()) {
-    std::cout << "wrote " << (out_dir / "trajectory.txt").string() << ", keyframes.txt, trajectory_maps.txt, stats.json\n";
+    std::cout << "wrote " << (out_dir / "trajectory.txt").string()
+              << ", keyframes.txt, trajectory_maps.txt, stats.json\n";
   }
   if (result.map_file) {
     std::cout << "saved map " << args.save_map << ": " << result.map_file->maps << " maps, "

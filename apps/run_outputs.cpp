@@ -47,7 +47,9 @@ std::vector<fs::path> previous_run_files(const fs::path& dir) {
 void prepare_output_folder(const fs::path& dir, const std::vector<fs::path>& files) {
   std::error_code ec;
   for (const fs::path& file : files) {
-    if (!fs::remove(file, ec) && ec) throw Error("cannot remove " + file.string() + " of the previous run: " + ec.message());
+    if (!fs::remove(file, ec) && ec) {
+      throw Error("cannot remove " + file.string() + " of the previous run: " + ec.message());
+    }
   }
   fs::create_directories(dir, ec);
   if (ec) throw Error("cannot create output folder " + dir.string() + ": " + ec.message());

@@ -39,7 +39,9 @@ std::string read_text(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-std::size_t count_newlines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+std::size_t count_newlines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_text(p)); }
 
@@ -354,8 +356,9 @@ TEST_F(RunOutputs, AFullDiskStopsTheLiveFileAtAWholeLineWithOneWarning) {
   EXPECT_GT(text.size(), 1000u);  // every line is under 500 bytes
   EXPECT_EQ(text.back(), '\n');
   EXPECT_EQ(read_trajectory(out / "trajectory_live.txt").size(), count_newlines(text));
-  EXPECT_NE(log.find("cannot write trajectory file " + (out / "trajectory.txt").string() + ": File too large"), std::string::npos)
-      << log;
+  const std::string trajectory_error =
+      "cannot write trajectory file " + (out / "trajectory.txt").string() + ": File too large";
+  EXPECT_NE(log.find(trajectory_error), std::string::npos) << log;
   EXPECT_EQ(leftovers(out), std::vector<std::string>{});
 }
 
