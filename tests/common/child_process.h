@@ -1,16 +1,20 @@
 #pragma once
 // Starts the built `stillslam` binary as a child process the test can signal
 // or kill while it runs, optionally with a file-size limit (a full disk
-// without root) or with a signal already pending when it starts. stdout and
-// stderr go to a pipe drained by a thread, so neither the file-size limit nor
-// a full pipe can block or cut them.
+// without root), with a signal already pending when it starts, or on a
+// terminal the test can close. stdout and stderr go to a pipe (or the
+// terminal) drained by a thread, so neither the file-size limit nor a full
+// pipe can block or cut them.
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -22,6 +26,10 @@ namespace stillslam::test {
 struct ChildOptions {
   std::optional<rlim_t> file_size_limit;  // RLIMIT_FSIZE in bytes; SIGXFSZ is ignored, so writes fail with EFBIG
   int pending_signal = 0;                 // blocked and raised before exec: pending from the first instruction
+  // stdin/stdout/stderr on a pseudo-terminal that is the child's controlling
+  // terminal (its own session); hang_up() closes it as a closed terminal
+  // window or ssh session does, and the kernel sends SIGHUP.
+  bool terminal = false;
 };
 
 class ChildProcess {
@@ -32,11 +40,23 @@ class ChildProcess {
     std::vector<char*> argv;
     for (std::string& a : all) argv.push_back(a.data());
     argv.push_back(nullptr);
-    int fds[2];
-    if (::pipe2(fds, O_CLOEXEC) != 0) return;  // dup2 below clears O_CLOEXEC on stdout/stderr
+    int fds[2] = {-1, -1};  // read end, write end (a pipe; the terminal's master side and -1)
+    std::string terminal_name;
+    if (options.terminal) {
+      fds[0] = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+      if (fds[0] < 0 || ::grantpt(fds[0]) != 0 || ::unlockpt(fds[0]) != 0) return;
+      terminal_name = ::ptsname(fds[0]);
+    } else if (::pipe2(fds, O_CLOEXEC) != 0) {  // dup2 below clears O_CLOEXEC on stdout/stderr
+      return;
+    }
     pid_ = ::fork();
     if (pid_ == 0) {
       // Only async-signal-safe calls between fork and exec.
+      if (options.terminal) {
+        ::setsid();
+        fds[1] = ::open(terminal_name.c_str(), O_RDWR);  // the session leader's first terminal: its controlling one
+        ::dup2(fds[1], 0);
+      }
       ::dup2(fds[1], 1);
       ::dup2(fds[1], 2);
       ::close(fds[0]);
@@ -56,12 +76,18 @@ class ChildProcess {
       ::execv(argv[0], argv.data());
       ::_exit(127);
     }
-    ::close(fds[1]);
+    if (fds[1] >= 0) ::close(fds[1]);
+    // Polls so that hang_up() can close a terminal this thread reads from.
     reader_ = std::thread([this, fd = fds[0]] {
       char buffer[4096];
-      ssize_t n = 0;
-      while ((n = ::read(fd, buffer, sizeof(buffer))) > 0 || (n < 0 && errno == EINTR)) {
-        if (n > 0) output_.append(buffer, static_cast<std::size_t>(n));
+      for (;;) {
+        if (hang_up_) break;
+        pollfd p{fd, POLLIN, 0};
+        if (::poll(&p, 1, 10) <= 0) continue;
+        const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;  // end of the pipe; EIO once a terminal's other side is closed
+        output_.append(buffer, static_cast<std::size_t>(n));
       }
       ::close(fd);
     });
@@ -77,6 +103,11 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   pid_t pid() const { return pid_; }
+  // Closes the terminal (ChildOptions::terminal): the child gets SIGHUP.
+  void hang_up() {
+    hang_up_ = true;
+    if (reader_.joinable()) reader_.join();
+  }
   void send(int signal) const { ::kill(pid_, signal); }
 
   // True once the child has exited (then wait() returns at once).
@@ -105,6 +136,7 @@ class ChildProcess {
   pid_t pid_ = -1;
   int status_ = -1;
   bool waited_ = false;
+  std::atomic<bool> hang_up_{false};
   std::thread reader_;
   std::string output_;
 };

@@ -230,6 +230,23 @@ TEST_F(RunOutputs, ASecondSignalDoesNotCutTheOutputs) {
   EXPECT_EQ(stats["end"]["signal"], "SIGTERM");
 }
 
+// A closed terminal window or ssh session: the kernel sends SIGHUP, and
+// every later write to the terminal fails. Exit 129, complete outputs.
+TEST_F(RunOutputs, AClosedTerminalEndsTheRunWithCompleteOutputs) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  ChildOptions options;
+  options.terminal = true;
+  ChildProcess child(run_args(out), options);
+  ASSERT_TRUE(wait_for_lines(child, out / "trajectory_live.txt", 8)) << child.output();
+  child.hang_up();
+  EXPECT_EQ(describe_status(child.wait()), "exit 129") << child.output();
+  const nlohmann::json stats = expect_complete_outputs(out);
+  EXPECT_EQ(stats["end"]["reason"], "interrupted");
+  EXPECT_EQ(stats["end"]["signal"], "SIGHUP");
+  EXPECT_LT(stats["end"]["frames_processed"].get<int>(), kFrames);
+}
+
 // A signal already pending when the process starts (it arrived before any
 // code ran) is taken first thing: no frame runs, and every output is written,
 // empty but complete, with the end marker. The warning comes before anything
