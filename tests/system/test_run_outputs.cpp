@@ -353,6 +353,25 @@ TEST_F(RunOutputs, AFullDiskKeepsWhatFitsAndNamesWhatDidNot) {
   EXPECT_EQ(leftovers(out), std::vector<std::string>{});
 }
 
+// One output that cannot be written (a folder named trajectory.txt) does not
+// stop the others: they are written, stats.json lists the failure, exit 1.
+TEST_F(RunOutputs, OneUnwritableOutputDoesNotStopTheOthers) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out / "trajectory.txt");
+  ChildProcess child(run_args(out, {"--max-frames", "10"}));
+  EXPECT_EQ(describe_status(child.wait()), "exit 1") << child.output();
+  const std::string error = "cannot write trajectory file " + (out / "trajectory.txt").string() + ": Is a directory";
+  EXPECT_NE(child.output().find(error), std::string::npos) << child.output();
+  const nlohmann::json stats = read_json(out / "stats.json");
+  EXPECT_EQ(stats["output_errors"], nlohmann::json::array({error}));
+  EXPECT_EQ(stats["end"]["reason"], "max_frames");
+  EXPECT_EQ(count_newlines(read_text(out / "trajectory_maps.txt")), stats["summary"]["tracked"].get<std::size_t>() + 1);
+  EXPECT_TRUE(fs::exists(out / "keyframes.txt"));
+  EXPECT_TRUE(fs::is_empty(out / "trajectory.txt"));
+  EXPECT_EQ(leftovers(out), std::vector<std::string>{});
+}
+
 // The live file hits the limit (1500 bytes) mid-line: it is cut back to its
 // last whole line at once, with one warning naming it and the cause.
 TEST_F(RunOutputs, AFullDiskStopsTheLiveFileAtAWholeLineWithOneWarning) {
