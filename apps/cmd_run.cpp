@@ -1,28 +1,29 @@
 // `stillslam run`: SLAM over a dataset folder (TUM RGB-D, EuRoC, KITTI layout).
-// Writes DIR/trajectory_live.txt while running (survives a crash or kill),
-// and at the end DIR/trajectory.txt (final estimate, every tracked frame),
-// DIR/keyframes.txt and DIR/stats.json. Ctrl-C stops cleanly and writes all.
+// Writes DIR/trajectory_live.txt while running (whole lines only, so it reads
+// back after a crash or kill), and at the end DIR/trajectory.txt (final
+// estimate, every tracked frame), DIR/keyframes.txt and DIR/stats.json, each
+// written whole or not at all (apps/run_outputs.h). SIGINT, SIGTERM, SIGHUP
+// and SIGQUIT stop the run and write all outputs (apps/signal_watcher.h); the
+// exit code says how the run ended (kExitCodes below).
 // Atlas: trajectory.txt holds the frames of every map, each in its own map's
 // frame until that map is merged; DIR/trajectory_maps.txt is the same in TUM
 // with a 9th column, the map id (readers of TUM ignore it).
-// --save-map FILE writes every map at the end (also after Ctrl-C or an input
+// --save-map FILE writes every map at the end (also after a signal or an input
 // error); --load-map FILE starts from a saved map (relocalizing first), and
 // with --localization only tracks against it (no keyframes, no mapping).
-#include <signal.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <thread>
 
 #include "commands.h"
 #include "opencv_threads.h"
+#include "run_outputs.h"
+#include "signal_watcher.h"
 #include "stillslam/core/error.h"
-#include "stillslam/core/json_text.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/dataset.h"
@@ -36,53 +37,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr const char* kExitCodes =
+    "Exit codes: 0 the run finished (all frames, or --max-frames); 1 an error (bad input or usage, an output "
+    "that could not be written; the outputs that could be written are kept); 2 an internal error (a bug); "
+    "128+N stopped by signal N with all outputs written: 130 SIGINT (Ctrl-C), 143 SIGTERM, 129 SIGHUP "
+    "(terminal or ssh session closed), 131 SIGQUIT. "
+    "stats.json's \"end\" says the same: reason finished | max_frames | interrupted | input_error, the signal, "
+    "frames_processed, frames_in_input.";
+
 struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
   std::string save_map, load_map;
   bool localization = false;
+  bool force = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
 };
-
-// SIGINT/SIGTERM are blocked in every thread and picked up here with
-// sigtimedwait, so no signal handler or global flag is needed.
-class SignalWatcher {
- public:
-  SignalWatcher() {
-    sigemptyset(&set_);
-    sigaddset(&set_, SIGINT);
-    sigaddset(&set_, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &set_, &previous_);
-    thread_ = std::thread([this] {
-      const timespec timeout{0, 100'000'000};
-      while (!done_) {
-        if (sigtimedwait(&set_, nullptr, &timeout) > 0) {
-          stop_ = true;
-          spdlog::warn("interrupted: finishing the current frame and writing outputs");
-        }
-      }
-    });
-  }
-  ~SignalWatcher() {
-    done_ = true;
-    thread_.join();
-    pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
-  }
-  const std::atomic<bool>& stop() const { return stop_; }
-
- private:
-  sigset_t set_{}, previous_{};
-  std::atomic<bool> stop_{false}, done_{false};
-  std::thread thread_;
-};
-
-void write_json(const fs::path& path, const nlohmann::json& j) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write " + path.string() + ": check that the output folder is writable");
-  out << json_text(j, 1) << "\n";
-}
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
   if (!args.groundtruth.empty()) return fs::path(args.groundtruth);
@@ -92,15 +64,21 @@ std::optional<fs::path> find_groundtruth(const RunArgs& args) {
 }
 
 void run(const RunArgs& args) {
+  SignalWatcher signals;  // before anything else: a signal from now on stops the run cleanly
+  const fs::path out_dir(args.output);
+  const std::vector<fs::path> previous = previous_run_files(out_dir);
+  if (!previous.empty() && !args.force) {
+    std::string names;
+    for (const fs::path& f : previous) names += (names.empty() ? "" : ", ") + f.filename().string();
+    throw Error("output folder " + out_dir.string() + " holds the outputs of an earlier run (" + names +
+                "); choose another folder or pass --force to replace them");
+  }
+  if (!args.save_map.empty()) check_map_path(args.save_map, out_dir);
   const Settings settings = load_settings(args.config);
   set_opencv_threads(settings.segmentation.threads);
   const auto dataset = open_dataset(args.input, settings);
-  const fs::path out_dir(args.output);
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error("cannot create output folder " + out_dir.string() + ": " + ec.message());
+  prepare_output_folder(out_dir, previous);
 
-  SignalWatcher signals;
   RunOptions options;
   options.system.use_segmentation = !args.no_segmentation;
   options.system.deterministic = args.deterministic;
@@ -129,16 +107,6 @@ void run(const RunArgs& args) {
   if (args.localization) spdlog::info("localization only in {}: no keyframes, no mapping", args.load_map);
   const RunResult result = run_dataset(settings, *dataset, options);
 
-  write_trajectory(out_dir / "trajectory.txt", result.trajectory);
-  write_trajectory(out_dir / "keyframes.txt", result.keyframes);
-  {
-    std::ofstream maps(out_dir / "trajectory_maps.txt");
-    maps << "# t x y z qx qy qz qw map_id (each pose in its map's frame)\n";
-    for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
-      maps << format_trajectory_line(result.trajectory[i], TrajectoryFormat::Tum) << ' '
-           << result.trajectory_map_ids[i] << '\n';
-    }
-  }
   const RunSummary summary = summarize_run(result.frames);
   nlohmann::json stats;
   stats["config"] = args.config;
@@ -152,6 +120,10 @@ void run(const RunArgs& args) {
   stats["summary"]["dropped_frames"] = result.dropped_frames;
   stats["summary"]["skipped_frames"] = result.skipped_frames;
   stats["summary"]["interrupted"] = result.interrupted;
+  stats["end"] = {{"reason", to_string(result.end)},
+                  {"signal", result.interrupted ? nlohmann::json(signal_name(signals.signal())) : nlohmann::json()},
+                  {"frames_processed", result.frames.size()},
+                  {"frames_in_input", result.frames_in_input}};
   stats["summary"]["keyframes_in_map"] = result.keyframes.size();
   stats["summary"]["map_points"] = result.map_points;
   stats["summary"]["maps"] = result.maps;
@@ -197,15 +169,28 @@ void run(const RunArgs& args) {
       spdlog::warn("no ATE: {}", e.what());
     }
   }
-  write_json(out_dir / "stats.json", stats);
-  std::cout << "wrote " << (out_dir / "trajectory.txt").string() << ", keyframes.txt, stats.json\n";
+  const std::vector<std::string> write_errors = write_run_outputs(out_dir, result, stats);
+  if (write_errors.empty()) {
+    std::cout << "wrote " << (out_dir / "trajectory.txt").string()
+              << ", keyframes.txt, trajectory_maps.txt, stats.json\n";
+  }
   if (result.map_file) {
     std::cout << "saved map " << args.save_map << ": " << result.map_file->maps << " maps, "
               << result.map_file->keyframes << " keyframes, " << result.map_file->map_points << " points, "
               << static_cast<double>(result.map_file->bytes) / 1e6 << " MB, " << result.save_map_ms << " ms\n";
   }
-  if (result.error) throw Error(*result.error + " (trajectory so far written to " + out_dir.string() + ")");
-  if (result.map_file_error) throw Error(*result.map_file_error);
+  // Every error is shown; the last one is the exit's message (exit code 1).
+  std::vector<std::string> errors = write_errors;
+  if (result.map_file_error) errors.push_back(*result.map_file_error);
+  if (!errors.empty()) errors.back() += " (the outputs that could be written are kept)";
+  if (result.error) errors.push_back(*result.error + " (the trajectory so far is in " + out_dir.string() + ")");
+  for (std::size_t i = 0; i + 1 < errors.size(); ++i) spdlog::error("{}", errors[i]);
+  if (!errors.empty()) throw Error(errors.back());
+  if (result.interrupted) {
+    spdlog::info("stopped by {} after {} of {} frames; outputs written to {}", signal_name(signals.signal()),
+                 result.frames.size(), result.frames_in_input, out_dir.string());
+    throw CLI::RuntimeError(128 + signals.signal());
+  }
 }
 
 }  // namespace
@@ -215,7 +200,13 @@ void add_run_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "run SLAM on a dataset folder and write the trajectory and stats");
   cmd->add_option("--config", args->config, "settings YAML (ORB-SLAM3 style)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input, "dataset folder (TUM RGB-D, EuRoC or KITTI layout)")->required();
-  cmd->add_option("--output", args->output, "output folder")->required();
+  cmd->add_option("--output", args->output,
+                  "output folder; one that holds an earlier run's trajectory*.txt, keyframes.txt or stats.json is "
+                  "refused unless --force is given")
+      ->required();
+  cmd->add_flag("--force", args->force,
+                "remove an earlier run's trajectory*.txt, keyframes.txt and stats.json from the output folder first "
+                "(nothing else in it is touched)");
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
@@ -230,7 +221,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--new-map-after-lost", args->new_map_after_lost,
                   "start a new map after N frames lost (default: 1 s of frames with a vocabulary; 0: never)");
   cmd->add_option("--save-map", args->save_map,
-                  "save every map to FILE at the end (also when the run stops early, e.g. Ctrl-C)");
+                  "save every map to FILE at the end (also when the run stops early, e.g. Ctrl-C); a folder or a "
+                  "missing parent folder is refused before the run starts");
   CLI::Option* load = cmd->add_option("--load-map", args->load_map,
                                       "start from a map saved with --save-map (needs the same vocabulary, sensor "
                                       "and calibration); tracking relocalizes in it first")
@@ -241,6 +233,7 @@ void add_run_command(CLI::App& app) {
       ->needs(load);
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
+  cmd->footer(kExitCodes);
   cmd->callback([args] { run(*args); });
 }
 

@@ -23,7 +23,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // A usage error exits 1 like every other error (CLI11's own codes are
+    // 1xx); a command's own code (CLI::RuntimeError: `run`'s 128+signal) is kept.
+    const int code = app.exit(e);
+    return code == 0 || e.get_name() == "RuntimeError" ? code : 1;
   } catch (const stillslam::Error& e) {
     spdlog::error("{}", e.what());
     return 1;

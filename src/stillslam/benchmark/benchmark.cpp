@@ -10,6 +10,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/json_text.h"
+#include "stillslam/core/text_file.h"
 #include "stillslam/eval/metrics.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/settings/settings.h"
@@ -43,7 +44,7 @@ void write_run_files(const fs::path& dir, const RunResult& result, RunRecord& re
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
   stats["frames"] = std::move(frames);
-  std::ofstream(dir / "stats.json") << json_text(stats, 1) << "\n";
+  write_text_file(dir / "stats.json", json_text(stats, 1) + "\n");  // whole or not at all; an Error names the cause
 }
 
 RunRecord run_once(const Settings& settings, const Dataset& dataset, const Trajectory& groundtruth,

@@ -5,6 +5,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/json_text.h"
+#include "stillslam/core/text_file.h"
 
 namespace stillslam {
 
@@ -51,10 +52,7 @@ void write_evaluation_json(const std::filesystem::path& path, const EvaluationRe
                            const EvaluationOptions& options, const nlohmann::json& extra) {
   nlohmann::json json = evaluation_to_json(result, options);
   for (const auto& [key, value] : extra.items()) json[key] = value;
-  std::ofstream out(path);
-  out << json_text(json, 2) << '\n';  // a non-UTF-8 input path must not throw
-  out.flush();
-  if (!out) throw Error("cannot write " + path.string() + "; check that its folder exists and is writable");
+  write_text_file(path, json_text(json, 2) + '\n');  // a non-UTF-8 input path must not throw
 }
 
 std::string format_evaluation_table(const EvaluationResult& result, const EvaluationOptions& options) {

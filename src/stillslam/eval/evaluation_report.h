@@ -17,7 +17,8 @@ nlohmann::json to_json(const ErrorStatistics& stats);
 nlohmann::json evaluation_to_json(const EvaluationResult& result, const EvaluationOptions& options);
 
 // Writes evaluation_to_json (plus `extra` keys merged at the top level, e.g.
-// "inputs") to `path`, pretty-printed. Error when the file cannot be written.
+// "inputs") to `path`, pretty-printed, whole or not at all (core/atomic_file.h).
+// Error naming the file and the cause when it cannot be written.
 void write_evaluation_json(const std::filesystem::path& path, const EvaluationResult& result,
                            const EvaluationOptions& options, const nlohmann::json& extra = nlohmann::json::object());
 

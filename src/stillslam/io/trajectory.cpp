@@ -11,6 +11,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fcntl.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include "stillslam/core/atomic_file.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/text.h"
 #include "stillslam/io/input_file.h"
@@ -457,30 +462,55 @@ constexpr const char* kEurocHeader = "#timestamp [ns],p_x [m],p_y [m],p_z [m],q_
 }
 
 void write_trajectory(const fs::path& path, const Trajectory& trajectory, TrajectoryFormat format) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write trajectory file " + path.string() + "; check that its folder exists and is writable");
-  if (format == TrajectoryFormat::Euroc) out << kEurocHeader << '\n';
-  for (const StampedPose& pose : trajectory) out << format_trajectory_line(pose, format) << '\n';
-  out.flush();
-  if (!out) throw Error("writing trajectory file " + path.string() + " failed; check free disk space");
+  std::string text;
+  if (format == TrajectoryFormat::Euroc) text += std::string(kEurocHeader) + '\n';
+  for (const StampedPose& pose : trajectory) text += format_trajectory_line(pose, format) + '\n';
+  write_file_atomically(path, text, "trajectory file");
 }
 
 TrajectoryWriter::TrajectoryWriter(const fs::path& path, TrajectoryFormat format)
-    : path_(path), format_(format), file_(std::fopen(path.c_str(), "w")) {
-  if (!file_) throw Error("cannot write trajectory file " + path.string() + "; check that its folder exists and is writable");
-  if (format_ == TrajectoryFormat::Euroc) {
-    std::fputs(kEurocHeader, file_.get());
-    std::fputc('\n', file_.get());
-    std::fflush(file_.get());
+    : path_(path), format_(format), fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) {
+  if (fd_ < 0) {
+    throw Error("cannot write trajectory file " + path.string() + ": " + system_reason(errno) +
+                "; check that its folder exists and is writable");
   }
+  if (format_ == TrajectoryFormat::Euroc) append(std::string(kEurocHeader) + '\n');
+}
+
+TrajectoryWriter::~TrajectoryWriter() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void TrajectoryWriter::write(const StampedPose& pose) {
-  const std::string line = format_trajectory_line(pose, format_) + '\n';
-  if (std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0) {
-    throw Error("writing trajectory file " + path_.string() + " failed; check free disk space");
+  if (append(format_trajectory_line(pose, format_) + '\n')) ++count_;
+}
+
+bool TrajectoryWriter::append(const std::string& line) {
+  if (failed_) return false;
+  // One write() per line: a killed process leaves whole lines behind. Only
+  // after a short write (disk full, file size limit) is the rest tried, which
+  // gives the cause; a line that still fails is cut off again.
+  std::size_t done = 0;
+  int err = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      err = n < 0 ? errno : ENOSPC;
+      break;
+    }
+    done += static_cast<std::size_t>(n);
   }
-  ++count_;
+  if (done == line.size()) {
+    size_ += line.size();
+    return true;
+  }
+  if (done > 0 && ::ftruncate(fd_, static_cast<off_t>(size_)) == 0) ::lseek(fd_, static_cast<off_t>(size_), SEEK_SET);
+  failed_ = true;
+  spdlog::warn("writing trajectory file {} failed ({}); it stops after {} poses, the final trajectory is still "
+               "written at the end",
+               path_.string(), system_reason(err), count_);
+  return false;
 }
 
 }  // namespace stillslam

@@ -72,23 +72,32 @@ void write_trajectory(const std::filesystem::path& path, const Trajectory& traje
 // Formats one pose as a line (no newline) in the given format.
 std::string format_trajectory_line(const StampedPose& pose, TrajectoryFormat format);
 
-// Appends one pose per call and flushes, so a run that dies keeps what it wrote.
-// The file is created (truncated) on construction; EuRoC files get their header.
+// Appends one pose per call, each line with a single write(), so a process
+// killed at any moment leaves only whole lines (the file always reads back
+// with read_trajectory once it has a pose). The file is created (truncated)
+// on construction; EuRoC files get their header. When a write fails (disk
+// full) the partial line is cut off, one warning names the file and the cause,
+// and later poses are dropped: the file stays a valid prefix of the run.
 class TrajectoryWriter {
  public:
   TrajectoryWriter(const std::filesystem::path& path, TrajectoryFormat format = TrajectoryFormat::Tum);
+  ~TrajectoryWriter();
+  TrajectoryWriter(const TrajectoryWriter&) = delete;
+  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
   void write(const StampedPose& pose);
   const std::filesystem::path& path() const { return path_; }
-  std::size_t count() const { return count_; }
+  std::size_t count() const { return count_; }  // poses written
+  bool failed() const { return failed_; }        // a write failed; nothing is written after it
 
  private:
-  struct FileCloser {
-    void operator()(std::FILE* file) const { std::fclose(file); }
-  };
+  bool append(const std::string& line);
+
   std::filesystem::path path_;
   TrajectoryFormat format_;
-  std::unique_ptr<std::FILE, FileCloser> file_;
+  int fd_ = -1;
+  std::size_t size_ = 0;  // bytes of whole lines in the file
   std::size_t count_ = 0;
+  bool failed_ = false;
 };
 
 }  // namespace stillslam

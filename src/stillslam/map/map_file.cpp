@@ -32,6 +32,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "stillslam/core/atomic_file.h"
 #include "stillslam/core/byte_io.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/fnv1a.h"
@@ -453,22 +454,7 @@ MapFileStats save_map_file(const std::filesystem::path& path, const MapFileConte
   payload.bytes().shrink_to_fit();
   file.put(fnv1a(out.data(), out.size()));
 
-  std::filesystem::path tmp = path;
-  tmp += ".partial";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(file.bytes().data(), static_cast<std::streamsize>(file.bytes().size()));
-    out.close();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw Error("cannot write map file " + path.string() + ": check that the folder exists and is writable "
-                  "and the disk is not full");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw Error("cannot write map file " + path.string() + ": " + ec.message());
+  write_file_atomically(path, file.bytes(), "map file");
 
   stats.bytes = file.bytes().size();
   stats.maps = maps.size();

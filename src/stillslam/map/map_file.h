@@ -79,8 +79,10 @@ struct MapFileStats {
 };
 
 // Writes the maps (callers hold each map's update mutex, or no other thread
-// runs). Written to a temporary file first and renamed, so an existing file is
-// replaced only by a complete one. Throws Error when the file can't be written.
+// runs). Written to a temporary file next to it and renamed
+// (core/atomic_file.h), so an existing file is replaced only by a complete one
+// and no temporary file is left behind. Throws Error naming the file and the
+// cause (e.g. "No space left on device", "Is a directory") when it can't be written.
 MapFileStats save_map_file(const std::filesystem::path& path, const MapFileContext& context,
                            const std::vector<MapToSave>& maps, std::uint64_t active_map_id = 0,
                            std::uint64_t next_map_id = 0, const MapFileSaveOptions& options = {});

@@ -9,6 +9,16 @@
 
 namespace stillslam {
 
+std::string to_string(RunEnd end) {
+  switch (end) {
+    case RunEnd::Finished: return "finished";
+    case RunEnd::MaxFrames: return "max_frames";
+    case RunEnd::Interrupted: return "interrupted";
+    case RunEnd::InputError: return "input_error";
+  }
+  return "finished";
+}
+
 RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options) {
   RunResult out;
   Stopwatch wall;
@@ -30,12 +40,12 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
   const double t0 = n > first ? dataset.timestamp(first) : 0.0;
   try {
     for (std::size_t i = first; i < n; ++i) {
-      SensorFrame frame = next.get();
-      if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
       if (options.stop != nullptr && options.stop->load()) {
         out.interrupted = true;
         break;
       }
+      SensorFrame frame = next.get();
+      if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
       if (options.realtime) {
         const double due = dataset.timestamp(i) - t0;
         const double now = wall.elapsed_ms() / 1000.0;
@@ -83,6 +93,14 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
   out.new_maps = system.new_maps_started();
   out.merges = system.merges();
   out.skipped_frames = dataset.skipped_frames();
+  out.frames_in_input = dataset.size();
+  if (out.error) {
+    out.end = RunEnd::InputError;
+  } else if (out.interrupted) {
+    out.end = RunEnd::Interrupted;
+  } else if (n < dataset.size()) {
+    out.end = RunEnd::MaxFrames;
+  }
   out.wall_seconds = wall.elapsed_ms() / 1000.0;
   return out;
 }

@@ -26,13 +26,26 @@ struct RunOptions {
   // Pace frames by their timestamps; frames whose time has passed while the
   // system was busy are dropped, as with a live camera.
   bool realtime = false;
-  const std::atomic<bool>* stop = nullptr;  // checked before each frame
+  // Checked before each frame (also before the first one: a stop requested
+  // while the system was being built ends the run with no frame processed).
+  const std::atomic<bool>* stop = nullptr;
   std::function<void(const FrameStats&, const System&)> on_frame;
   // A progress line on stderr while the run lasts (total_frames is filled in).
   std::optional<ProgressOptions> progress;
 };
 
+// How a run ended, written as stats.json's "end" marker.
+enum class RunEnd {
+  Finished,     // every frame of the input went through
+  MaxFrames,    // stopped after RunOptions::max_frames, the input has more
+  Interrupted,  // RunOptions::stop was set
+  InputError,   // a frame could not be read; `error` says why
+};
+std::string to_string(RunEnd end);
+
 struct RunResult {
+  RunEnd end = RunEnd::Finished;
+  std::size_t frames_in_input = 0;  // the dataset's frame count
   std::vector<FrameStats> frames;
   Trajectory trajectory;  // final estimate, every tracked frame
   std::vector<std::uint64_t> trajectory_map_ids;  // per trajectory pose: the map it is expressed in
