@@ -199,6 +199,7 @@ void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
     s.stereo = rectified_pair(s.camera, *baseline);
   }
   if (baseline) s.bf = *baseline * s.camera.fx;
+  s.rgbd = depth_factor.has_value() && !s.stereo;
 }
 
 }  // namespace
