@@ -112,7 +112,7 @@ EurocDataset::EurocDataset(const std::filesystem::path& mav0, const CameraSettin
   // As ORB-SLAM3, frames are the pairs found; the images left out are said.
   if (unpaired_ > 0 || right.size() > frames_.size()) {
     spdlog::warn("{} lists {} images and {} lists {}: {} stereo pairs within {} s, {} cam0 and {} cam1 images "
-                 "without a partner are dropped (a cut or edited data.csv?)",
+                 "without a partner are dropped",
                  (mav0 / "cam0" / "data.csv").string(), left.size(), (mav0 / "cam1" / "data.csv").string(),
                  right.size(), frames_.size(), options.max_dt, unpaired_, right.size() - frames_.size());
   }
