@@ -39,6 +39,7 @@ struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
+  bool skip_bad_frames = false;
   std::string save_map, load_map;
   bool localization = false;
   std::size_t max_frames = 0;
@@ -93,7 +94,9 @@ std::optional<fs::path> find_groundtruth(const RunArgs& args) {
 void run(const RunArgs& args) {
   const Settings settings = load_settings(args.config);
   set_opencv_threads(settings.segmentation.threads);
-  const auto dataset = open_dataset(args.input, settings);
+  DatasetOptions dataset_options;
+  dataset_options.skip_bad_frames = args.skip_bad_frames;
+  const auto dataset = open_dataset(args.input, settings, dataset_options);
   const fs::path out_dir(args.output);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
@@ -218,6 +221,9 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
+  cmd->add_flag("--skip-bad-frames", args->skip_bad_frames,
+                "go on past a missing or unreadable frame (a warning names each; stats.json counts them in "
+                "summary.skipped_frames) instead of ending the run there");
   cmd->add_flag("--deterministic", args->deterministic,
                 "synchronous local mapping: same input, same trajectory bit for bit");
   cmd->add_option("--vocabulary", args->vocabulary,

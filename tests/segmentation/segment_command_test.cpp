@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <regex>
 #include <sstream>
@@ -70,6 +71,35 @@ TEST(SegmentCommand, ClassFilterAndErrors) {
   EXPECT_NE(run("segment --model /no/such/model.onnx --image " + test::bus_image() + " --out " + out.string()).status, 0);
   EXPECT_NE(run("segment --model " + test::shipped_model() + " --image /no/such.jpg --out " + out.string()).status, 0);
   fs::remove_all(out);
+}
+
+// A folder with a corrupt image: `segment --input` stops at it, naming it,
+// unless --skip-bad-frames, which warns with its name and segments the rest.
+TEST(SegmentCommand, SkipBadFramesGoesOnPastACorruptImage) {
+  REQUIRE_STILLSLAM_BINARY()
+  const fs::path dir = fs::temp_directory_path() / "stillslam_segment_skip_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "images");
+  fs::copy_file(test::bus_image(), dir / "images" / "a.jpg");
+  std::ofstream(dir / "images" / "b.png") << "not a png";
+  fs::copy_file(test::bus_image(), dir / "images" / "c.jpg");
+  const std::string base = "segment --model " + test::shipped_model() + " --input " + (dir / "images").string() +
+                           " --out " + (dir / "out").string() + " --threads 1";
+  const CommandRun stops = test::run_stillslam(base, true);
+  EXPECT_NE(stops.status, 0);
+  EXPECT_NE(stops.out.find("b.png"), std::string::npos) << stops.out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "masks" / "c.png"));
+
+  const CommandRun skips = test::run_stillslam(base + " --skip-bad-frames", true);
+  EXPECT_EQ(skips.status, 0) << skips.out;
+  EXPECT_NE(skips.out.find("skipping bad image (1 skipped so far): " + (dir / "images" / "b.png").string()),
+            std::string::npos)
+      << skips.out;
+  EXPECT_NE(skips.out.find("segment: 1 of 3 image(s) skipped"), std::string::npos) << skips.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "masks" / "a.png"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "masks" / "c.png"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "masks" / "b.png"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
