@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include <sys/wait.h>
+
 #include "common/run_stillslam.h"
 #include "segmentation/test_data.h"
 
@@ -100,6 +102,23 @@ TEST(SegmentCommand, SkipBadFramesGoesOnPastACorruptImage) {
   EXPECT_TRUE(fs::exists(dir / "out" / "masks" / "c.png"));
   EXPECT_FALSE(fs::exists(dir / "out" / "masks" / "b.png"));
   fs::remove_all(dir);
+}
+
+// --dilation and --threads take Segmentation.maskDilation's and .threads' limits
+// (a dilation of 1e6 ended in std::bad_alloc, 100000 threads crashed at exit).
+TEST(SegmentCommand, DilationAndThreadsOutOfRangeAreNamed) {
+  REQUIRE_STILLSLAM_BINARY()
+  const fs::path out = fs::temp_directory_path() / "stillslam_segment_limits_test";
+  const std::string base = "segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
+                           out.string();
+  const CommandRun dilation = test::run_stillslam(base + " --dilation 1000000", true);
+  EXPECT_EQ(WEXITSTATUS(dilation.status), 1);
+  EXPECT_NE(dilation.out.find("--dilation is 1000000: must be in [0, 256] pixels"), std::string::npos)
+      << dilation.out;
+  const CommandRun threads = test::run_stillslam(base + " --threads 100000", true);
+  EXPECT_EQ(WEXITSTATUS(threads.status), 1);
+  EXPECT_NE(threads.out.find("--threads is 100000: must be in [0, "), std::string::npos) << threads.out;
+  fs::remove_all(out);
 }
 
 }  // namespace
