@@ -49,6 +49,7 @@ struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
+  bool skip_bad_frames = false;
   std::string save_map, load_map;
   bool localization = false;
   bool force = false;
@@ -76,7 +77,9 @@ void run(const RunArgs& args) {
   if (!args.save_map.empty()) check_map_path(args.save_map, out_dir);
   const Settings settings = load_settings(args.config);
   set_opencv_threads(settings.segmentation.threads);
-  const auto dataset = open_dataset(args.input, settings);
+  DatasetOptions dataset_options;
+  dataset_options.skip_bad_frames = args.skip_bad_frames;
+  const auto dataset = open_dataset(args.input, settings, dataset_options);
   prepare_output_folder(out_dir, previous);
 
   RunOptions options;
@@ -210,6 +213,9 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
+  cmd->add_flag("--skip-bad-frames", args->skip_bad_frames,
+                "go on past a missing or unreadable frame (a warning names each; stats.json counts them in "
+                "summary.skipped_frames) instead of ending the run there");
   cmd->add_flag("--deterministic", args->deterministic,
                 "synchronous local mapping: same input, same trajectory bit for bit");
   cmd->add_option("--vocabulary", args->vocabulary,

@@ -2,6 +2,7 @@
 // images; print one JSON object per detection on stdout and write binary masks
 // (union of the dynamic classes and one per instance) and overlays into --out.
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -38,6 +39,7 @@ struct SegmentArgs {
   std::optional<int> dilation;
   int threads = 0;
   bool agnostic_nms = false;
+  bool skip_bad_frames = false;
 };
 
 // A folder of images, or a dataset folder whose color/left images live in a
@@ -47,7 +49,7 @@ std::vector<fs::path> sequence_images(const fs::path& dir) {
   for (const fs::path& sub : {fs::path("."), fs::path("rgb"), fs::path("mav0/cam0/data"), fs::path("image_2"),
                              fs::path("image_0"), fs::path("cam0/data")}) {
     if (!fs::is_directory(dir / sub)) continue;
-    auto files = image_files_in(dir / sub);
+    auto files = image_files_in((dir / sub).lexically_normal());  // no "./" in the names
     if (!files.empty()) return files;
   }
   throw Error("no images (.png, .jpg, ...) in '" + dir.string() +
@@ -120,7 +122,14 @@ void run_segment(const SegmentArgs& args) {
   if (args.iou) options.nms_iou_threshold = *args.iou;
   if (args.mask_threshold) options.mask_threshold = *args.mask_threshold;
   if (args.dilation) options.mask_dilation = *args.dilation;
-  if (options.mask_dilation < 0) throw Error("--dilation must be >= 0");
+  // The limits of Segmentation.maskDilation and Segmentation.threads.
+  if (options.mask_dilation < 0 || options.mask_dilation > 256) {
+    throw Error("--dilation is " + std::to_string(options.mask_dilation) + ": must be in [0, 256] pixels");
+  }
+  if (args.threads > max_threads()) {
+    throw Error("--threads is " + std::to_string(args.threads) + ": must be in [0, " + std::to_string(max_threads()) +
+                "]");
+  }
   set_opencv_threads(args.threads);
   options.agnostic_nms = options.agnostic_nms || args.agnostic_nms;
   options.masks_for_classes_only = false;
@@ -141,8 +150,17 @@ void run_segment(const SegmentArgs& args) {
   if (!jsonl) throw Error("cannot write '" + (out / "detections.jsonl").string() + "': check --out is writable");
   std::cerr << "segment: " << images.size() << " image(s), model " << options.model_path << " ("
             << segmenter.input_size().width << "x" << segmenter.input_size().height << ")\n";
+  std::size_t skipped = 0;
   for (const auto& file : images) {
-    const cv::Mat bgr = read_color_image(file);
+    cv::Mat bgr;
+    try {
+      bgr = read_color_image(file);
+    } catch (const Error& e) {
+      if (!args.skip_bad_frames) throw;
+      ++skipped;
+      spdlog::warn("skipping bad image ({} skipped so far): {}", skipped, e.what());
+      continue;
+    }
     Stopwatch watch;
     std::vector<Detection> dets = segmenter.segment(bgr);
     const double ms = watch.elapsed_ms();
@@ -168,6 +186,8 @@ void run_segment(const SegmentArgs& args) {
     std::cerr << file.filename().string() << ": " << dets.size() << " detection(s), " << static_cast<int>(ms)
               << " ms\n";
   }
+  if (skipped == images.size()) throw Error("no readable image: all " + std::to_string(skipped) + " were skipped");
+  if (skipped > 0) std::cerr << "segment: " << skipped << " of " << images.size() << " image(s) skipped\n";
 }
 
 }  // namespace
@@ -196,6 +216,8 @@ void add_segment_command(CLI::App& app) {
   cmd->add_option("--dilation", args->dilation, "grow the union mask by this many pixels (default Segmentation.maskDilation)");
   cmd->add_option("--threads", args->threads, "OpenCV threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--agnostic-nms", args->agnostic_nms, "suppress overlapping boxes across classes");
+  cmd->add_flag("--skip-bad-frames", args->skip_bad_frames,
+                "go on past a missing or unreadable image (a warning names each) instead of stopping there");
   cmd->callback([args]() {
     if (args->config.empty() && args->model.empty()) throw Error("stillslam segment needs --config YAML or --model FILE");
     if (args->image.empty() && args->input.empty()) throw Error("stillslam segment needs --image FILE or --input FOLDER");

@@ -5,10 +5,13 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <regex>
 #include <sstream>
 #include <string>
+
+#include <sys/wait.h>
 
 #include "common/run_stillslam.h"
 #include "segmentation/test_data.h"
@@ -69,6 +72,52 @@ TEST(SegmentCommand, ClassFilterAndErrors) {
   EXPECT_NE(run(base + " --classes unicorn").status, 0);
   EXPECT_NE(run("segment --model /no/such/model.onnx --image " + test::bus_image() + " --out " + out.string()).status, 0);
   EXPECT_NE(run("segment --model " + test::shipped_model() + " --image /no/such.jpg --out " + out.string()).status, 0);
+  fs::remove_all(out);
+}
+
+// A folder with a corrupt image: `segment --input` stops at it, naming it,
+// unless --skip-bad-frames, which warns with its name and segments the rest.
+TEST(SegmentCommand, SkipBadFramesGoesOnPastACorruptImage) {
+  REQUIRE_STILLSLAM_BINARY()
+  const fs::path dir = fs::temp_directory_path() / "stillslam_segment_skip_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "images");
+  fs::copy_file(test::bus_image(), dir / "images" / "a.jpg");
+  std::ofstream(dir / "images" / "b.png") << "not a png";
+  fs::copy_file(test::bus_image(), dir / "images" / "c.jpg");
+  const std::string base = "segment --model " + test::shipped_model() + " --input " + (dir / "images").string() +
+                           " --out " + (dir / "out").string() + " --threads 1";
+  const CommandRun stops = test::run_stillslam(base, true);
+  EXPECT_NE(stops.status, 0);
+  EXPECT_NE(stops.out.find("b.png"), std::string::npos) << stops.out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "masks" / "c.png"));
+
+  const CommandRun skips = test::run_stillslam(base + " --skip-bad-frames", true);
+  EXPECT_EQ(skips.status, 0) << skips.out;
+  EXPECT_NE(skips.out.find("skipping bad image (1 skipped so far): " + (dir / "images" / "b.png").string()),
+            std::string::npos)
+      << skips.out;
+  EXPECT_NE(skips.out.find("segment: 1 of 3 image(s) skipped"), std::string::npos) << skips.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "masks" / "a.png"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "masks" / "c.png"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "masks" / "b.png"));
+  fs::remove_all(dir);
+}
+
+// --dilation and --threads take Segmentation.maskDilation's and .threads' limits
+// (a dilation of 1e6 ended in std::bad_alloc, 100000 threads crashed at exit).
+TEST(SegmentCommand, DilationAndThreadsOutOfRangeAreNamed) {
+  REQUIRE_STILLSLAM_BINARY()
+  const fs::path out = fs::temp_directory_path() / "stillslam_segment_limits_test";
+  const std::string base = "segment --model " + test::shipped_model() + " --image " + test::bus_image() + " --out " +
+                           out.string();
+  const CommandRun dilation = test::run_stillslam(base + " --dilation 1000000", true);
+  EXPECT_EQ(WEXITSTATUS(dilation.status), 1);
+  EXPECT_NE(dilation.out.find("--dilation is 1000000: must be in [0, 256] pixels"), std::string::npos)
+      << dilation.out;
+  const CommandRun threads = test::run_stillslam(base + " --threads 100000", true);
+  EXPECT_EQ(WEXITSTATUS(threads.status), 1);
+  EXPECT_NE(threads.out.find("--threads is 100000: must be in [0, "), std::string::npos) << threads.out;
   fs::remove_all(out);
 }
 

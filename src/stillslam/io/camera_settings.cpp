@@ -5,11 +5,64 @@
 #include <string>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/core/text.h"
+#include "stillslam/io/distortion_check.h"
 #include "stillslam/io/yaml_reader.h"
 
 namespace stillslam {
 namespace {
+
+// What a real camera can be. Wide enough for any lens and sensor in use
+// (a 100 px fisheye focal length to a telephoto on a 20000 px sensor);
+// outside, a number is a typo or a unit mix-up and every result from it
+// would be nonsense.
+constexpr double kMinFocal = 10, kMaxFocal = 100000;  // pixels
+constexpr int kMinSize = 16, kMaxSize = 20000;         // image width, height in pixels
+constexpr double kMinFps = 0.1, kMaxFps = 1000;
+constexpr double kMinBaseline = 0.001, kMaxBaseline = 10;  // metres
+constexpr double kMinThDepth = 1, kMaxThDepth = 1000;      // baselines
+constexpr double kMinDepthFactor = 1, kMaxDepthFactor = 100000;  // depth units per metre (1000: mm, 5000: TUM)
+
+// "key 'X' is V: must be in [min, max] (what)" for a value out of range.
+void require_range(const YamlReader& yaml, const std::string& key, double value, double min, double max,
+                   const std::string& what) {
+  if (value >= min && value <= max) return;
+  yaml.fail(key, "is " + option_check::text(value) + ": must be in [" + option_check::text(min) + ", " +
+                     option_check::text(max) + "] (" + what + ")");
+}
+
+// Focal lengths, principal point (inside the image when its size is known)
+// and a distortion that does not fold the image. `keys` maps the fields to
+// the file's keys, e.g. {"Camera1.fx", ...}.
+struct CameraKeys {
+  std::string fx, fy, cx, cy, distortion;  // `distortion`: the coefficient keys' prefix, or a matrix key
+  std::vector<std::string> coefficients;   // per coefficient, in CameraCalibration order
+};
+
+void check_camera(const YamlReader& yaml, const CameraCalibration& cam, const CameraKeys& keys) {
+  require_range(yaml, keys.fx, cam.fx, kMinFocal, kMaxFocal, "focal length in pixels");
+  require_range(yaml, keys.fy, cam.fy, kMinFocal, kMaxFocal, "focal length in pixels");
+  const double width = cam.width > 0 ? cam.width : kMaxSize;
+  const double height = cam.height > 0 ? cam.height : kMaxSize;
+  const std::string inside = cam.width > 0 ? "principal point inside the image" : "principal point in pixels";
+  require_range(yaml, keys.cx, cam.cx, 0, width, inside);
+  require_range(yaml, keys.cy, cam.cy, 0, height, inside);
+  const auto fold = distortion_fold(cam);
+  if (!fold) return;
+  // Name the coefficient that makes the fold: the first whose removal ends it.
+  for (std::size_t i = 0; i < cam.distortion.size() && i < keys.coefficients.size(); ++i) {
+    CameraCalibration without = cam;
+    without.distortion[i] = 0;
+    if (distortion_fold(without)) continue;
+    yaml.fail(keys.coefficients[i], "is " + option_check::text(cam.distortion[i]) +
+                                        ": this distortion folds the image " + *fold +
+                                        " (two directions land on one pixel); check the calibration's "
+                                        "coefficients and their order (k1 k2 p1 p2 [k3])");
+  }
+  yaml.fail(keys.distortion, "folds the image " + *fold +
+                                 " (two directions land on one pixel); check the calibration's coefficients");
+}
 
 enum class CameraType { PinHole, KannalaBrandt8, Rectified };
 
@@ -33,8 +86,6 @@ CameraCalibration read_camera(const YamlReader& yaml, const std::string& prefix,
   cam.fy = yaml.number(prefix + "fy");
   cam.cx = yaml.number(prefix + "cx");
   cam.cy = yaml.number(prefix + "cy");
-  if (cam.fx <= 0) yaml.fail(prefix + "fx", "must be positive (focal length in pixels)");
-  if (cam.fy <= 0) yaml.fail(prefix + "fy", "must be positive (focal length in pixels)");
   if (type == CameraType::KannalaBrandt8) {
     for (const char* k : {"k1", "k2", "k3", "k4"}) cam.distortion.push_back(yaml.number(prefix + k));
   } else if (type == CameraType::PinHole && yaml.has(prefix + "k1")) {
@@ -48,8 +99,14 @@ CameraCalibration read_camera(const YamlReader& yaml, const std::string& prefix,
   }
   cam.width = yaml.optional_integer("Camera.width").value_or(0);
   cam.height = yaml.optional_integer("Camera.height").value_or(0);
-  if (cam.width < 0) yaml.fail("Camera.width", "must be positive");
-  if (cam.height < 0) yaml.fail("Camera.height", "must be positive");
+  if (yaml.has("Camera.width")) require_range(yaml, "Camera.width", cam.width, kMinSize, kMaxSize, "pixels");
+  if (yaml.has("Camera.height")) require_range(yaml, "Camera.height", cam.height, kMinSize, kMaxSize, "pixels");
+  CameraKeys keys{prefix + "fx", prefix + "fy", prefix + "cx", prefix + "cy", prefix + "k1", {}};
+  for (const char* k : type == CameraType::KannalaBrandt8 ? std::vector<const char*>{"k1", "k2", "k3", "k4"}
+                                                         : std::vector<const char*>{"k1", "k2", "p1", "p2", "k3"}) {
+    keys.coefficients.push_back(prefix + k);
+  }
+  check_camera(yaml, cam, keys);
   return cam;
 }
 
@@ -84,7 +141,6 @@ StereoCalibration read_left_right_blocks(const YamlReader& yaml) {
     cam.fy = K(1, 1);
     cam.cx = K(0, 2);
     cam.cy = K(1, 2);
-    if (cam.fx <= 0 || cam.fy <= 0) yaml.fail(side + ".K", "must have positive focal lengths");
     const auto D = yaml.optional_matrix(side + ".D");
     if (!D) yaml.fail(side + ".D", "is missing (distortion k1 k2 p1 p2 [k3])");
     for (Eigen::Index i = 0; i < D->size(); ++i) cam.distortion.push_back(D->data()[i]);
@@ -93,6 +149,11 @@ StereoCalibration read_left_right_blocks(const YamlReader& yaml) {
     }
     cam.width = yaml.optional_integer(side + ".width").value_or(0);
     cam.height = yaml.optional_integer(side + ".height").value_or(0);
+    if (yaml.has(side + ".width")) require_range(yaml, side + ".width", cam.width, kMinSize, kMaxSize, "pixels");
+    if (yaml.has(side + ".height")) require_range(yaml, side + ".height", cam.height, kMinSize, kMaxSize, "pixels");
+    const std::string k = side + ".K";
+    check_camera(yaml, cam, {k + " fx (0,0)", k + " fy (1,1)", k + " cx (0,2)", k + " cy (1,2)", side + ".D",
+                             {side + ".D k1", side + ".D k2", side + ".D p1", side + ".D p2", side + ".D k3"}});
     return cam;
   };
   StereoCalibration stereo;
@@ -105,6 +166,8 @@ StereoCalibration read_left_right_blocks(const YamlReader& yaml) {
     yaml.fail("RIGHT.P", "must be a rectified projection with P(0,3) = -fx * baseline < 0");
   }
   stereo.baseline = -P2(0, 3) / P2(0, 0);
+  require_range(yaml, "RIGHT.P", stereo.baseline, kMinBaseline, kMaxBaseline,
+                "the baseline -P(0,3) / P(0,0), metres");
   stereo.T_c1_c2.linear() = R1.transpose() * R2;
   stereo.T_c1_c2.translation() = R1.transpose() * Eigen::Vector3d(stereo.baseline, 0, 0);
   stereo.rectified = false;
@@ -150,30 +213,33 @@ void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
   }
   s.camera = read_camera(yaml, prefix, type);
   s.fps = yaml.optional_number("Camera.fps").value_or(s.fps);
-  if (s.fps <= 0) yaml.fail("Camera.fps", "must be positive");
+  require_range(yaml, "Camera.fps", s.fps, kMinFps, kMaxFps, "frames per second");
   if (const auto rgb = yaml.optional_integer("Camera.RGB")) {
     if (*rgb != 0 && *rgb != 1) yaml.fail("Camera.RGB", "must be 0 (BGR) or 1 (RGB)");
     s.rgb = *rgb == 1;
   }
   std::string th_key;
   s.th_depth = first_number(yaml, {"Stereo.ThDepth", "ThDepth"}, &th_key).value_or(s.th_depth);
-  if (s.th_depth <= 0) yaml.fail(th_key, "must be positive (close/far threshold in baselines)");
+  if (!th_key.empty()) {
+    require_range(yaml, th_key, s.th_depth, kMinThDepth, kMaxThDepth, "close/far threshold in baselines");
+  }
   std::string depth_key;
   const auto depth_factor = first_number(yaml, {"RGBD.DepthMapFactor", "DepthMapFactor"}, &depth_key);
   if (depth_factor) {
-    if (*depth_factor <= 0) {
-      yaml.fail(depth_key, "must be positive (depth image units per metre, 5000 for TUM)");
-    }
+    require_range(yaml, depth_key, *depth_factor, kMinDepthFactor, kMaxDepthFactor,
+                  "depth image units per metre: 5000 for TUM, 1000 for millimetres");
     s.depth_map_factor = *depth_factor;
   }
 
   // Baseline: Stereo.b (metres) or Camera.bf (baseline * fx).
   std::optional<double> baseline;
   if (const auto b = yaml.optional_number("Stereo.b")) {
-    if (*b <= 0) yaml.fail("Stereo.b", "must be positive (stereo baseline in metres)");
+    require_range(yaml, "Stereo.b", *b, kMinBaseline, kMaxBaseline, "stereo baseline in metres");
     baseline = *b;
   } else if (const auto bf = yaml.optional_number("Camera.bf")) {
-    if (*bf <= 0) yaml.fail("Camera.bf", "must be positive (baseline in metres times fx)");
+    require_range(yaml, "Camera.bf", *bf, kMinBaseline * s.camera.fx, kMaxBaseline * s.camera.fx,
+                  "baseline in metres times fx: a baseline of " + option_check::text(kMinBaseline) + " to " +
+                      option_check::text(kMaxBaseline) + " m");
     baseline = *bf / s.camera.fx;
   }
 
@@ -184,7 +250,8 @@ void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
     stereo.right = read_camera(yaml, prefix2, type);
     stereo.T_c1_c2 = read_pose(yaml, "Stereo.T_c1_c2");
     stereo.baseline = stereo.T_c1_c2.translation().norm();
-    if (stereo.baseline <= 0) yaml.fail("Stereo.T_c1_c2", "must have a non-zero translation (the baseline)");
+    require_range(yaml, "Stereo.T_c1_c2", stereo.baseline, kMinBaseline, kMaxBaseline,
+                  "the length of its translation, the baseline in metres");
     if (!baseline) baseline = stereo.baseline;
     s.stereo = stereo;
   } else if (prefix2.empty() && yaml.has("LEFT.K")) {
@@ -199,6 +266,7 @@ void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
     s.stereo = rectified_pair(s.camera, *baseline);
   }
   if (baseline) s.bf = *baseline * s.camera.fx;
+  s.rgbd = depth_factor.has_value() && !s.stereo;
 }
 
 }  // namespace

@@ -24,6 +24,10 @@ struct CameraSettings {
   // Camera.type "Rectified" / a baseline without DepthMapFactor (rectified =
   // true, left = right = camera).
   std::optional<StereoCalibration> stereo;
+  // The file asks for an RGB-D camera: it gives DepthMapFactor (or
+  // RGBD.DepthMapFactor) and describes no stereo pair. Neither this nor
+  // `stereo`: the file does not say (old monocular-style keys).
+  bool rgbd = false;
   double bf = 0;                            // baseline * fx (Camera.bf, or Stereo.b * fx)
   double th_depth = 40;                     // ThDepth / Stereo.ThDepth, in baselines
   double depth_map_factor = 5000;           // DepthMapFactor / RGBD.DepthMapFactor

@@ -3,7 +3,10 @@
 // open_dataset() detects the layout from the folder contents (or takes a TUM
 // association file as the path); a folder holding both a TUM and an EuRoC
 // layout is read as EuRoC stereo when the settings describe a stereo pair,
-// else as TUM RGB-D.
+// else as TUM RGB-D. Settings that ask for the other sensor (RGB-D settings
+// on a stereo-only folder, stereo settings on a TUM folder) are an Error
+// naming the settings to change. Every list's stamps are checked on opening
+// (timestamp_check.h).
 //
 // Bad frames: by default load() throws stillslam::Error naming the file (missing
 // image, unreadable or truncated PNG, 8-bit depth). With

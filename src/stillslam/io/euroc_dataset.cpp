@@ -1,11 +1,13 @@
 #include "stillslam/io/euroc_dataset.h"
 
 #include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
 
 #include "stillslam/core/error.h"
 #include "stillslam/io/image_io.h"
 #include "stillslam/io/text_table.h"
 #include "stillslam/io/timestamp_association.h"
+#include "stillslam/io/timestamp_check.h"
 #include "stillslam/io/yaml_reader.h"
 
 namespace stillslam {
@@ -29,11 +31,14 @@ std::vector<TimedImage> read_camera_list(const std::filesystem::path& csv) {
     throw Error(csv.string() + ": missing (EuRoC camera list '#timestamp [ns],filename')");
   }
   std::vector<TimedImage> out;
+  // Checked on the seconds the trajectory gets; messages quote the nanoseconds.
+  TimestampCheck stamps(csv, "timestamp [ns]");
   for (const TextRow& row : read_text_table(csv)) {
     if (row.fields.size() < 2) {
       throw Error(csv.string() + ":" + std::to_string(row.line) + ": expected 'timestamp_ns,filename'");
     }
     out.push_back({static_cast<double>(parse_int64(row.fields[0], csv, row.line)) * 1e-9, row.fields[1]});
+    stamps.add(out.back().timestamp, row.fields[0], row.line);
   }
   return out;
 }
@@ -104,6 +109,13 @@ EurocDataset::EurocDataset(const std::filesystem::path& mav0, const CameraSettin
     frames_.push_back({left[il].timestamp, left[il].file, right[ir].file});
   }
   unpaired_ = left.size() - frames_.size();
+  // As ORB-SLAM3, frames are the pairs found; the images left out are said.
+  if (unpaired_ > 0 || right.size() > frames_.size()) {
+    spdlog::warn("{} lists {} images and {} lists {}: {} stereo pairs within {} s, {} cam0 and {} cam1 images "
+                 "without a partner are dropped",
+                 (mav0 / "cam0" / "data.csv").string(), left.size(), (mav0 / "cam1" / "data.csv").string(),
+                 right.size(), frames_.size(), options.max_dt, unpaired_, right.size() - frames_.size());
+  }
   if (frames_.empty()) {
     throw Error((mav0 / "cam0" / "data.csv").string() +
                 ": no stereo frames (empty list, or no cam1 image within " + std::to_string(options.max_dt) +

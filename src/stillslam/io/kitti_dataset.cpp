@@ -1,13 +1,17 @@
 #include "stillslam/io/kitti_dataset.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/io/image_io.h"
 #include "stillslam/io/text_table.h"
+#include "stillslam/io/timestamp_check.h"
 
 namespace stillslam {
 namespace {
@@ -16,6 +20,35 @@ std::string image_name(std::size_t i) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%06zu.png", i);
   return buffer;
+}
+
+// calib.txt is the sequence's own calibration; settings with other numbers
+// were made for another sequence (KITTI 00-02, 03 and 04-12 differ), and
+// running with either set silently would be wrong half the time.
+void require_same_calibration(const StereoCalibration& calib, const CameraSettings& settings,
+                              const std::filesystem::path& calib_txt) {
+  if (settings.camera.fx <= 0) return;  // the settings give no intrinsics
+  const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-4 * std::max(1.0, std::abs(a)); };
+  struct Value {
+    const char* name;
+    const char* keys;
+    double calib, settings;
+  };
+  const double calib_bf = calib.baseline * calib.left.fx;
+  const Value values[] = {
+      {"fx", "Camera.fx / Camera1.fx", calib.left.fx, settings.camera.fx},
+      {"fy", "Camera.fy / Camera1.fy", calib.left.fy, settings.camera.fy},
+      {"cx", "Camera.cx / Camera1.cx", calib.left.cx, settings.camera.cx},
+      {"cy", "Camera.cy / Camera1.cy", calib.left.cy, settings.camera.cy},
+      {"bf", "Camera.bf, or Stereo.b times fx", calib_bf, settings.bf > 0 ? settings.bf : calib_bf}};
+  for (const Value& v : values) {
+    if (!differs(v.calib, v.settings)) continue;
+    throw Error(calib_txt.string() + ": gives " + v.name + " " + option_check::text(v.calib) + " but " +
+                (settings.file.empty() ? std::string("the settings") : settings.file.string()) + " say " +
+                option_check::text(v.settings) + " (" + v.keys +
+                "): use the settings made for this sequence (config/kitti_00-02.yaml, kitti_03.yaml or "
+                "kitti_04-12.yaml), or make the settings agree with calib.txt");
+  }
 }
 
 }  // namespace
@@ -52,14 +85,17 @@ KittiDataset::KittiDataset(const std::filesystem::path& folder, const CameraSett
                            const DatasetOptions& options)
     : FileDataset(options.skip_bad_frames), folder_(folder) {
   const auto times_file = folder / "times.txt";
+  TimestampCheck stamps(times_file);
   for (const TextRow& row : read_text_table(times_file)) {
     times_.push_back(parse_double(row.fields[0], times_file, row.line));
+    stamps.add(times_.back(), row.fields[0], row.line);
   }
   if (times_.empty()) throw Error(times_file.string() + ": no frames (empty times.txt)");
 
   std::error_code ec;
   if (std::filesystem::is_regular_file(folder / "calib.txt", ec)) {
     stereo_ = read_kitti_calibration(folder / "calib.txt");
+    require_same_calibration(stereo_, settings, folder / "calib.txt");
   } else if (settings.bf > 0) {
     stereo_.left = settings.camera;
     stereo_.left.distortion.clear();

@@ -16,7 +16,9 @@ StereoCalibration read_kitti_calibration(const std::filesystem::path& calib_txt)
 class KittiDataset : public FileDataset {
  public:
   // Uses calib.txt when present, else the Settings (which then must give
-  // Camera.bf / Stereo.b). The image size comes from the first left image,
+  // Camera.bf / Stereo.b). With both, settings intrinsics or bf that
+  // differ from calib.txt's (by more than 1e-4 relative) are an Error
+  // naming both. The image size comes from the first left image,
   // falling back to Camera.width/height.
   KittiDataset(const std::filesystem::path& folder, const CameraSettings& settings, const DatasetOptions& options);
 

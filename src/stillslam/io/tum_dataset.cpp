@@ -1,11 +1,13 @@
 #include "stillslam/io/tum_dataset.h"
 
 #include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
 
 #include "stillslam/core/error.h"
 #include "stillslam/io/image_io.h"
 #include "stillslam/io/text_table.h"
 #include "stillslam/io/timestamp_association.h"
+#include "stillslam/io/timestamp_check.h"
 
 namespace stillslam {
 namespace {
@@ -19,12 +21,14 @@ struct TimedFile {
 
 std::vector<TimedFile> read_tum_list(const std::filesystem::path& list) {
   std::vector<TimedFile> out;
+  TimestampCheck stamps(list);
   for (const TextRow& row : read_text_table(list)) {
     if (row.fields.size() < 2) {
       throw Error(list.string() + ":" + std::to_string(row.line) +
                   ": expected 'timestamp file' (TUM rgb.txt / depth.txt format)");
     }
     out.push_back({parse_double(row.fields[0], list, row.line), row.fields[1]});
+    stamps.add(out.back().time, row.fields[0], row.line);
   }
   return out;
 }
@@ -33,6 +37,9 @@ std::vector<TimedFile> read_tum_list(const std::filesystem::path& list) {
 
 std::vector<TumPair> read_tum_associations(const std::filesystem::path& file) {
   std::vector<TumPair> pairs;
+  // The rgb stamps become the trajectory's: sorted and unique. The depth
+  // stamps only pick files, but must still be real times.
+  TimestampCheck rgb_stamps(file, "rgb timestamp");
   for (const TextRow& row : read_text_table(file)) {
     if (row.fields.size() < 4) {
       throw Error(file.string() + ":" + std::to_string(row.line) +
@@ -41,10 +48,13 @@ std::vector<TumPair> read_tum_associations(const std::filesystem::path& file) {
     TumPair p{parse_double(row.fields[0], file, row.line), row.fields[1],
               parse_double(row.fields[2], file, row.line), row.fields[3]};
     // Some tools write depth first; the folder names tell the order.
-    if (starts_with(p.rgb_file, "depth") && starts_with(p.depth_file, "rgb")) {
+    const bool depth_first = starts_with(p.rgb_file, "depth") && starts_with(p.depth_file, "rgb");
+    if (depth_first) {
       std::swap(p.rgb_time, p.depth_time);
       std::swap(p.rgb_file, p.depth_file);
     }
+    rgb_stamps.add(p.rgb_time, row.fields[depth_first ? 2 : 0], row.line);
+    TimestampCheck(file, "depth timestamp").add(p.depth_time, row.fields[depth_first ? 0 : 2], row.line);
     pairs.push_back(std::move(p));
   }
   return pairs;
@@ -60,6 +70,13 @@ std::vector<TumPair> associate_tum_lists(const std::filesystem::path& rgb_list,
   std::vector<TumPair> pairs;
   for (const auto& [ir, id] : associate_timestamps(rgb_times, depth_times, max_dt)) {
     pairs.push_back({rgb[ir].time, rgb[ir].file, depth[id].time, depth[id].file});
+  }
+  // As associate.py, frames are the pairs found; the images left out are said.
+  if (!pairs.empty() && pairs.size() < rgb.size()) {
+    spdlog::warn("{} lists {} images and {} lists {}: {} rgb/depth pairs within {} s, {} rgb images without a "
+                 "depth partner are dropped",
+                 rgb_list.string(), rgb.size(), depth_list.string(), depth.size(), pairs.size(), max_dt,
+                 rgb.size() - pairs.size());
   }
   return pairs;
 }

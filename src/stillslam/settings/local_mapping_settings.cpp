@@ -8,21 +8,24 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   // Local bundle adjustment (Ceres).
   keys.flag("bundleAdjustment", options.enable_bundle_adjustment);
   BundleAdjustmentOptions& ba = options.bundle_adjustment;
-  keys.integer("baThreads", ba.num_threads, "BundleAdjustmentOptions.num_threads");
-  keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations");
+  keys.integer("baThreads", ba.num_threads, "BundleAdjustmentOptions.num_threads", thread_limits(1));
+  keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations", {1, 1000});
   keys.integer("baIterationsAfterOutliers", ba.iterations_after_outliers,
-               "BundleAdjustmentOptions.iterations_after_outliers");
+               "BundleAdjustmentOptions.iterations_after_outliers", {0, 1000});
   // New points, fusion, culling.
-  keys.count("triangulationNeighbours", options.triangulation.neighbours, "PointTriangulationOptions.neighbours");
-  keys.count("fusionNeighbours", options.fusion.neighbours, "FusionOptions.neighbours");
-  keys.count("fusionSecondNeighbours", options.fusion.second_neighbours, "FusionOptions.second_neighbours");
-  keys.number("pointMinFoundRatio", options.point_culling.min_found_ratio, "PointCullingOptions.min_found_ratio");
+  keys.count("triangulationNeighbours", options.triangulation.neighbours,
+             "PointTriangulationOptions.neighbours", {1, 1000});
+  keys.count("fusionNeighbours", options.fusion.neighbours, "FusionOptions.neighbours", {1, 1000});
+  keys.count("fusionSecondNeighbours", options.fusion.second_neighbours, "FusionOptions.second_neighbours", {0, 1000});
+  keys.number("pointMinFoundRatio", options.point_culling.min_found_ratio,
+              "PointCullingOptions.min_found_ratio", {0, 1});
   keys.integer("pointMinObservations", options.point_culling.min_observations,
-               "PointCullingOptions.min_observations");
+               "PointCullingOptions.min_observations", {0, 1000});
   keys.flag("keyframeCulling", options.enable_keyframe_culling);
-  keys.number("keyframeRedundancy", options.keyframe_culling.redundancy, "KeyFrameCullingOptions.redundancy");
+  keys.number("keyframeRedundancy", options.keyframe_culling.redundancy,
+              "KeyFrameCullingOptions.redundancy", {0, 1, true});
   keys.integer("keyframeMinObservers", options.keyframe_culling.min_observers,
-               "KeyFrameCullingOptions.min_observers");
+               "KeyFrameCullingOptions.min_observers", {1, 1000});
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

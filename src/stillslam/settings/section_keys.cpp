@@ -2,10 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "stillslam/core/option_check.h"
+#include "stillslam/settings/settings.h"
 
 namespace stillslam {
+
+std::string Limits::text() const {
+  return (open_min ? "(" : "[") + option_check::text(min) + ", " + option_check::text(max) + "]";
+}
+
+int max_threads() { return std::max(64, 4 * static_cast<int>(std::thread::hardware_concurrency())); }
+
+Limits thread_limits(double min) { return {min, static_cast<double>(max_threads())}; }
 
 SectionKeys::SectionKeys(const YamlReader& yaml, std::string section, bool own)
     : yaml_(yaml), section_(std::move(section)), own_(own) {
@@ -27,42 +37,47 @@ cv::FileNode SectionKeys::find(const std::string& name) const {
   return nested_.isMap() ? nested_[name] : cv::FileNode();
 }
 
-std::optional<double> SectionKeys::read_number(const std::string& name, const std::string& field) {
+std::optional<double> SectionKeys::read_number(const std::string& name, const std::string& field,
+                                              const std::optional<Limits>& limits) {
   if (!field.empty()) bound_.emplace_back(field, name);
   const cv::FileNode n = node(name);
   if (n.isNone()) return std::nullopt;
   const auto v = node_number(n);
   if (!v || !std::isfinite(*v)) fail(name, "must be a number");
+  if (limits && !((limits->open_min ? *v > limits->min : *v >= limits->min) && *v <= limits->max)) {
+    fail(name, "is " + option_check::text(*v) + ": must be in " + limits->text());
+  }
   return v;
 }
 
 void SectionKeys::flag(const std::string& name, bool& target, const std::string& field) {
-  const auto v = read_number(name, field);
+  const auto v = read_number(name, field, std::nullopt);
   if (!v) return;
   if (*v != 0 && *v != 1) fail(name, "must be 0 or 1");
   target = *v == 1;
 }
 
-void SectionKeys::integer(const std::string& name, int& target, const std::string& field) {
-  const auto v = read_number(name, field);
+void SectionKeys::integer(const std::string& name, int& target, const std::string& field, const Limits& limits) {
+  const auto v = read_number(name, field, limits);
   if (!v) return;
   if (std::round(*v) != *v || std::abs(*v) > 2e9) fail(name, "must be an integer");
   target = static_cast<int>(*v);
 }
 
-void SectionKeys::count(const std::string& name, std::size_t& target, const std::string& field) {
-  const auto v = read_number(name, field);
+void SectionKeys::count(const std::string& name, std::size_t& target, const std::string& field,
+                        const Limits& limits) {
+  const auto v = read_number(name, field, limits);
   if (!v) return;
   if (std::round(*v) != *v || *v < 0 || *v > 2e9) fail(name, "must be an integer >= 0");
   target = static_cast<std::size_t>(*v);
 }
 
-void SectionKeys::number(const std::string& name, double& target, const std::string& field) {
-  if (const auto v = read_number(name, field)) target = *v;
+void SectionKeys::number(const std::string& name, double& target, const std::string& field, const Limits& limits) {
+  if (const auto v = read_number(name, field, limits)) target = *v;
 }
 
-void SectionKeys::number(const std::string& name, float& target, const std::string& field) {
-  if (const auto v = read_number(name, field)) target = static_cast<float>(*v);
+void SectionKeys::number(const std::string& name, float& target, const std::string& field, const Limits& limits) {
+  if (const auto v = read_number(name, field, limits)) target = static_cast<float>(*v);
 }
 
 void SectionKeys::fail(const std::string& name, const std::string& message) const {

@@ -17,6 +17,18 @@
 
 namespace stillslam {
 
+// The values a key may take, [min, max] or (min, max]: what a sane
+// configuration can be, checked as the key is read (the Options' own
+// check() then adds what relates two fields).
+struct Limits {
+  double min, max;
+  bool open_min = false;
+  std::string text() const;  // "[1, 100]" or "(0, 100]"
+};
+
+// Thread-count keys: [min, max_threads()] (settings.h).
+Limits thread_limits(double min);
+
 class SectionKeys {
  public:
   // own: a section stillslam defines (Segmentation, Tracking, LocalMapping,
@@ -31,12 +43,13 @@ class SectionKeys {
   // The key's node (none when absent); `name` becomes a known key.
   cv::FileNode node(const std::string& name);
   // Read an optional key into `target` (unchanged when absent) and bind it
-  // to `field` ("TrackerOptions.min_local_map_inliers").
+  // to `field` ("TrackerOptions.min_local_map_inliers"). A value outside
+  // `limits` is an error "key 'X' is V: must be in [min, max]".
   void flag(const std::string& name, bool& target, const std::string& field = "");  // 0 or 1
-  void integer(const std::string& name, int& target, const std::string& field);
-  void count(const std::string& name, std::size_t& target, const std::string& field);  // integer >= 0
-  void number(const std::string& name, double& target, const std::string& field);
-  void number(const std::string& name, float& target, const std::string& field);
+  void integer(const std::string& name, int& target, const std::string& field, const Limits& limits);
+  void count(const std::string& name, std::size_t& target, const std::string& field, const Limits& limits);
+  void number(const std::string& name, double& target, const std::string& field, const Limits& limits);
+  void number(const std::string& name, float& target, const std::string& field, const Limits& limits);
 
   [[noreturn]] void fail(const std::string& name, const std::string& message) const;
 
@@ -51,7 +64,8 @@ class SectionKeys {
 
  private:
   cv::FileNode find(const std::string& name) const;  // flat, then nested
-  std::optional<double> read_number(const std::string& name, const std::string& field);
+  std::optional<double> read_number(const std::string& name, const std::string& field,
+                                    const std::optional<Limits>& limits);
 
   const YamlReader& yaml_;
   std::string section_;

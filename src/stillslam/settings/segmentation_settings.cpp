@@ -69,12 +69,12 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.flag("enabled", options.enabled);
   options.model_path = read_model(keys, options.enabled, executable);
   if (!keys.node("classes").isNone()) options.classes = read_classes(keys);
-  keys.number("scoreThreshold", options.score_threshold, "SegmentationOptions.score_threshold");
-  keys.number("nmsIouThreshold", options.nms_iou_threshold, "SegmentationOptions.nms_iou_threshold");
-  keys.number("maskThreshold", options.mask_threshold, "SegmentationOptions.mask_threshold");
-  keys.integer("maskDilation", options.mask_dilation, "SegmentationOptions.mask_dilation");
-  keys.integer("holdFrames", options.hold_frames, "SegmentationOptions.hold_frames");
-  keys.integer("threads", options.threads, "SegmentationOptions.threads");
+  keys.number("scoreThreshold", options.score_threshold, "SegmentationOptions.score_threshold", {0, 1});
+  keys.number("nmsIouThreshold", options.nms_iou_threshold, "SegmentationOptions.nms_iou_threshold", {0, 1, true});
+  keys.number("maskThreshold", options.mask_threshold, "SegmentationOptions.mask_threshold", {0, 1, true});
+  keys.integer("maskDilation", options.mask_dilation, "SegmentationOptions.mask_dilation", {0, 256});
+  keys.integer("holdFrames", options.hold_frames, "SegmentationOptions.hold_frames", {0, 1000});
+  keys.integer("threads", options.threads, "SegmentationOptions.threads", thread_limits(0));
   keys.flag("masksForClassesOnly", options.masks_for_classes_only);
   keys.flag("agnosticNms", options.agnostic_nms);
   keys.reject_unknown_keys();

@@ -37,6 +37,11 @@ struct Settings : CameraSettings {
   ViewerOptions viewer;                      // Viewer.port, Viewer.host
 };
 
+// The most threads a thread-count key (Segmentation.threads, *.baThreads)
+// may ask for: 64, or 4 per core on a machine with more than 16 cores.
+// Far more than cores only slows a run; 100000 crashed TBB's teardown.
+int max_threads();
+
 // Reads and validates a settings file; throws stillslam::Error naming the file
 // and the offending key. Without Segmentation.model the shipped model is
 // looked for next to the running executable and in its parent folders.

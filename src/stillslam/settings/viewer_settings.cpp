@@ -21,7 +21,7 @@ constexpr std::array<const char*, 11> kOrbSlamViewerKeys = {
 // stillslam key is named, ORB-SLAM3's are accepted silently.
 void bind_viewer(const YamlReader& yaml, ViewerOptions& options) {
   SectionKeys keys(yaml, "Viewer", false);
-  keys.integer("port", options.port, "ViewerOptions.port");
+  keys.integer("port", options.port, "ViewerOptions.port", {1, 65535});
   const cv::FileNode host = keys.node("host");
   if (!host.isNone()) {
     if (!host.isString()) keys.fail("host", "must be a string (a host name or address, e.g. \"127.0.0.1\")");
