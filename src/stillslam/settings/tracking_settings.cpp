@@ -26,6 +26,10 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("closePointsUntrackedMin", tracker.close_points_untracked_min,
                "TrackerOptions.close_points_untracked_min");
   keys.integer("newKeyframePoints", tracker.new_keyframe_points, "TrackerOptions.new_keyframe_points");
+  keys.flag("newPointCheck", tracker.new_point_check.enabled);
+  keys.flag("newPointSkipOutliers", tracker.skip_outlier_keypoints);
+  keys.integer("outlierStreakCull", tracker.outlier_streak_cull, "TrackerOptions.outlier_streak_cull");
+  keys.number("newPointCheckRadius", tracker.new_point_check.radius, "DepthPointCheckOptions.radius");
   // Search windows and the local map.
   keys.number("motionSearchRadius", tracker.motion_search_radius, "TrackerOptions.motion_search_radius");
   keys.number("localMapSearchRadius", tracker.local_map_search_th, "TrackerOptions.local_map_search_th");
