@@ -73,8 +73,8 @@ TEST(DepthPointCheck, OptionsAreChecked) {
 }
 
 // A quarter of the scene moves 5 cm a frame sideways while the camera
-// translates: the pose stays right, and with the rules on no keyframe after
-// the first makes a depth point of the block.
+// translates: the pose stays right, and with the two rules on (both off by
+// default) no keyframe after the first makes a depth point of the block.
 struct BlockRun {
   double max_error = 0;
   int block_points_created = 0;  // by keyframes after the first
@@ -115,6 +115,8 @@ TEST(TrackerMovingBlock, PoseStaysRightAndNoDepthPointsOnTheBlock) {
   TrackerOptions options;
   options.init_min_keypoints = 300;
   options.max_frames_between_keyframes = 5;
+  options.new_point_check.enabled = true;
+  options.skip_outlier_keypoints = true;
   const BlockRun on = track_moving_block(options);
   EXPECT_LT(on.max_error, 1e-3);
   ASSERT_GE(on.keyframes, 1);

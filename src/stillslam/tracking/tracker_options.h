@@ -31,8 +31,9 @@ struct TrackerOptions {
   DepthPointCheckOptions new_point_check;  // only points the previous frame saw in place
   // A keypoint whose map-point match was an outlier of the final pose
   // optimization gets no new depth point at a keyframe (ORB-SLAM keeps such a
-  // match in the keyframe for local BA to judge instead).
-  bool skip_outlier_keypoints = true;
+  // match in the keyframe for local BA to judge instead). Off by default, see
+  // DepthPointCheckOptions::enabled.
+  bool skip_outlier_keypoints = false;
   // A map point rejected as an outlier in this many consecutive frames that
   // matched it is culled (0: never, the default: on the issue #20 renders it
   // culled static points too, see bench/README.md); Tracker::cull_outlier_streaks.
