@@ -7,12 +7,16 @@
 //   build/bench/bench_slam --config S.yaml --input DIR [--groundtruth GT]
 //       [--no-segmentation] [--deterministic] [--check-determinism] [--raw-trajectory]
 //       [--max-frames N] [--opencv-threads N] [--json OUT] [--vocabulary FILE]
-//       [--oracle-masks DIR] [--trajectory OUT] [--keyframe-trajectory OUT]
+//       [--oracle-masks DIR [--mask-miss-rate R] [--mask-miss-burst S] [--mask-miss-seed N]]
+//       [--trajectory OUT] [--keyframe-trajectory OUT]
 //
 // --oracle-masks: a `stillslam simulate` folder; its ground-truth masks/ (in
 // associations.txt order) replace YOLO, with the settings' dilation and hold.
 // Segmentation "on" with perfect masks: what is left of the gap to the static
 // path is geometry (less of the view to track), not missed people.
+// --mask-miss-rate: that share of the frames gets no mask (a detector that
+// lost the people), chosen with --mask-miss-seed; with --mask-miss-burst S in
+// whole bursts of S seconds. bench_mask_misses sweeps the rate.
 #include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -30,9 +34,9 @@
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
-#include "stillslam/segmentation/segmenter.h"
 #include "stillslam/system/dataset_runner.h"
 #include "stillslam/system/run_summary.h"
+#include "oracle_segmenter.h"
 
 namespace fs = std::filesystem;
 using namespace stillslam;
@@ -44,6 +48,7 @@ struct Args {
   bool no_segmentation = false, deterministic = false, check_determinism = false, raw_trajectory = false;
   std::size_t max_frames = 0;
   int opencv_threads = -1;
+  oracle::MaskMissOptions misses;
 };
 
 Args parse(int argc, char** argv) {
@@ -57,6 +62,11 @@ Args parse(int argc, char** argv) {
   app.add_option("--trajectory", a.trajectory, "write the estimated trajectory here (TUM format)");
   app.add_option("--keyframe-trajectory", a.keyframe_trajectory, "write the keyframes' poses here (TUM format)");
   app.add_option("--oracle-masks", a.oracle_masks, "simulate folder whose ground-truth masks/ replace YOLO");
+  app.add_option("--mask-miss-rate", a.misses.rate, "with --oracle-masks: share of frames without a mask")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--mask-miss-burst", a.misses.burst_seconds, "missed masks in bursts of this many seconds (0: frames)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--mask-miss-seed", a.misses.seed, "seed of the missed frames")->capture_default_str();
   app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
   app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
   app.add_flag("--raw-trajectory", a.raw_trajectory, "the tracked poses, not re-estimated against the final map");
@@ -76,41 +86,19 @@ void print_timing(const char* name, const TimingSummary& t) {
   std::printf("  %-28s mean %7.2f  median %7.2f  p95 %7.2f  max %7.2f ms\n", name, t.mean, t.median, t.p95, t.max);
 }
 
-// The k-th call returns the k-th ground-truth mask as one "person" (frames are
-// segmented in order and none is dropped outside realtime mode).
-class OracleSegmenter : public Segmenter {
- public:
-  explicit OracleSegmenter(const fs::path& sequence) {
-    for (const TumPair& p : read_tum_associations(sequence / "associations.txt")) {
-      files_.push_back(sequence / "masks" / fs::path(p.rgb_file).filename());
-    }
-  }
-  std::vector<Detection> segment(const cv::Mat& bgr) override {
-    if (next_ >= files_.size()) throw Error("--oracle-masks: more frames than masks");
-    const fs::path& file = files_[next_++];
-    const cv::Mat1b mask = cv::imread(file.string(), cv::IMREAD_GRAYSCALE) > 0;
-    if (mask.size() != bgr.size()) throw Error(file.string() + ": missing or not the frame's size");
-    if (cv::countNonZero(mask) == 0) return {};
-    Detection d;
-    d.class_id = 0;
-    d.class_name = "person";
-    d.score = 1.f;
-    d.box = cv::boundingRect(mask);
-    d.mask = mask;
-    return {d};
-  }
-
- private:
-  std::vector<fs::path> files_;
-  std::size_t next_ = 0;
-};
-
 RunResult run_once(const Settings& settings, const Dataset& dataset, const Args& a, bool deterministic) {
   RunOptions options;
   options.system.use_segmentation = !a.no_segmentation;
   options.system.vocabulary_path = a.vocabulary;
   if (!a.oracle_masks.empty()) {
-    options.system.segmenter_factory = [dir = a.oracle_masks] { return std::make_unique<OracleSegmenter>(dir); };
+    oracle::MaskMissOptions misses = a.misses;
+    misses.fps = settings.fps > 0 ? settings.fps : 30.0;
+    std::vector<bool> missed = oracle::choose_missed_frames(oracle::oracle_mask_files(a.oracle_masks).size(), misses);
+    options.system.segmenter_factory = [dir = a.oracle_masks, missed] {
+      return std::make_unique<oracle::OracleSegmenter>(dir, missed);
+    };
+  } else if (a.misses.rate > 0) {
+    throw Error("--mask-miss-rate needs --oracle-masks DIR (the exact masks to miss)");
   }
   options.system.deterministic = deterministic;
   options.system.trajectory_refinement.enabled = !a.raw_trajectory;
@@ -127,6 +115,7 @@ int bench(const Args& a) {
   const RunSummary s = summarize_run(r.frames);
   nlohmann::json out;
   out["input"] = a.input;
+  out["mask_misses"] = {{"rate", a.misses.rate}, {"burst_seconds", a.misses.burst_seconds}, {"seed", a.misses.seed}};
   out["summary"] = to_json(s);
   out["local_mapping"] = to_json(r.mapper);
   out["frames"] = nlohmann::json::array();

@@ -63,6 +63,10 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   void increase_visible(int n = 1) { visible_ += n; }
   void increase_found(int n = 1) { found_ += n; }
   double found_ratio() const { return visible_ > 0 ? static_cast<double>(found_) / visible_ : 0.0; }
+  // Consecutive tracked frames in which the point was matched but rejected as
+  // an outlier by the pose optimization (an inlier match resets it).
+  int outlier_streak() const { return outlier_streak_; }
+  void record_tracking_match(bool inlier) { outlier_streak_ = inlier ? 0 : outlier_streak_ + 1; }
   int visible() const { return visible_; }
   int found() const { return found_; }
 
@@ -92,6 +96,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   int num_observations_ = 0;
   KeyFrame* reference_;
   int visible_ = 1, found_ = 1;
+  int outlier_streak_ = 0;  // not saved in map files: a tracking statistic like the two above
   bool bad_ = false;
   std::shared_ptr<MapPoint> replaced_by_;
 };

@@ -27,6 +27,10 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("closePointsUntrackedMin", tracker.close_points_untracked_min,
                "TrackerOptions.close_points_untracked_min", {0, 50000});
   keys.integer("newKeyframePoints", tracker.new_keyframe_points, "TrackerOptions.new_keyframe_points", {0, 50000});
+  keys.flag("newPointCheck", tracker.new_point_check.enabled);
+  keys.flag("newPointSkipOutliers", tracker.skip_outlier_keypoints);
+  keys.integer("outlierStreakCull", tracker.outlier_streak_cull, "TrackerOptions.outlier_streak_cull", {0, 1000});
+  keys.number("newPointCheckRadius", tracker.new_point_check.radius, "DepthPointCheckOptions.radius", {0, 100, true});
   // Search windows and the local map.
   keys.number("motionSearchRadius", tracker.motion_search_radius,
               "TrackerOptions.motion_search_radius", {0, 1000, true});

@@ -164,6 +164,7 @@ void System::build_pipeline(const Settings& settings) {
   }
   TrackerOptions tracking = settings.tracking;
   tracking.localization_only = options_.localization_only;
+  tracking.probe = options_.tracking_probe;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 

@@ -87,6 +87,8 @@ struct SystemOptions {
   TrajectoryRefinementOptions trajectory_refinement;
   // What is published after each frame, and how often the map is.
   PublishOptions publish;
+  // Diagnostics (bench/bench_dynamic_points.cpp): sees each tracking stage.
+  TrackingProbe tracking_probe;
 };
 
 // A frame's pose with the id of the map it is expressed in.

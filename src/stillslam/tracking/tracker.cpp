@@ -5,6 +5,7 @@
 #include <unordered_set>
 
 #include "stillslam/map/projection_search.h"
+#include "stillslam/tracking/depth_point_check.h"
 #include "stillslam/tracking/local_map.h"
 #include "stillslam/tracking/pose_refinement.h"
 
@@ -99,6 +100,7 @@ TrackingResult Tracker::track(Frame& frame) {
     if (!options_.localization_only && need_new_keyframe(frame, result.inliers)) {
       create_keyframe(frame);
       result.new_keyframe = true;
+      if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
     }
     // Outliers found in the final optimization do not carry over.
     discard_outliers(frame);
@@ -176,6 +178,7 @@ void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
   T_last_ref_ = Eigen::Isometry3d::Identity();
   last_frame_ = frame;
   state_ = TrackingState::Ok;
+  if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
   if (link_.insert_keyframe) link_.insert_keyframe(kf);
 }
 
@@ -219,6 +222,7 @@ bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
     return false;
   }
   refine_pose(frame, options_.pose);
+  if (options_.probe) options_.probe(TrackingStage::MotionModel, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
     result.reason = "motion model: " + std::to_string(inliers) + " inliers";
@@ -260,6 +264,7 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
     return false;
   }
   refine_pose(frame, options_.pose);
+  if (options_.probe) options_.probe(TrackingStage::ReferenceKeyFrame, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
     result.reason = "reference keyframe: " + std::to_string(inliers) + " inliers";
@@ -291,6 +296,7 @@ bool Tracker::track_while_lost(Frame& frame, TrackingResult& result) {
     return false;
   }
   refine_pose(frame, options_.pose);
+  if (options_.probe) options_.probe(TrackingStage::Lost, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < options_.min_local_map_inliers) {
     result.reason = "lost: " + std::to_string(inliers) + " inliers in the last keyframes' local map";
@@ -311,21 +317,42 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
   search_points(frame, local.points, recovering ? 5.f : options_.local_map_search_th);
   result.matches = frame.num_matches();
   refine_pose(frame, options_.pose);
+  if (options_.probe) options_.probe(TrackingStage::LocalMap, frame, *map_);
   int inliers = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
+    if (mp->num_observations() > 0) mp->record_tracking_match(!frame.is_outlier(i));
     if (frame.is_outlier(i)) continue;
     mp->increase_found();
     if (mp->num_observations() > 0) ++inliers;
   }
   result.inliers = inliers;
+  cull_outlier_streaks(frame, inliers);
   if (inliers < options_.min_local_map_inliers) {
     result.reason = "local map: " + std::to_string(inliers) + " inliers";
     return false;
   }
   result.reason = "ok";
   return true;
+}
+
+// A map point matched in several consecutive frames and rejected by the pose
+// optimization each time does not fit the camera motion: it moved (a thing
+// the segmentation missed) or keeps being mismatched. Only while the frame
+// is tracked well, so that a bad pose does not clear the map.
+void Tracker::cull_outlier_streaks(const Frame& frame, int inliers) {
+  if (options_.outlier_streak_cull <= 0 || options_.localization_only ||
+      inliers < 2 * options_.min_local_map_inliers) {
+    return;
+  }
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const MapPointPtr& mp = frame.map_point(i);
+    if (mp && frame.is_outlier(i) && mp->num_observations() > 0 && !mp->is_bad() &&
+        mp->outlier_streak() >= options_.outlier_streak_cull) {
+      mp->set_bad();
+    }
+  }
 }
 
 bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
@@ -366,10 +393,15 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
 }
 
 void Tracker::create_keyframe(Frame& frame) {
-  // Temporary odometry points never enter keyframes.
+  // Temporary odometry points never enter keyframes, nor do outlier matches;
+  // a keypoint whose match failed the pose check (it moved, or was
+  // mismatched) does not become a new depth point either.
+  std::vector<bool> failed_match(frame.size(), false);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const MapPointPtr& mp = frame.map_point(i);
-    if (mp && (mp->num_observations() < 1 || frame.is_outlier(i))) frame.set_map_point(i, nullptr);
+    if (!mp) continue;
+    if (frame.is_outlier(i)) failed_match[i] = options_.skip_outlier_keypoints;
+    if (mp->num_observations() < 1 || frame.is_outlier(i)) frame.set_map_point(i, nullptr);
   }
   KeyFramePtr kf = map_->create_keyframe(frame);
   std::vector<std::pair<float, std::size_t>> by_depth;
@@ -379,9 +411,14 @@ void Tracker::create_keyframe(Frame& frame) {
   std::sort(by_depth.begin(), by_depth.end());
   int n = 0;
   const double close_depth = frame.setup().close_depth;
+  // The previous frame confirms new depth points (tracking/depth_point_check.h)
+  // when it directly precedes this one.
+  const bool check = options_.new_point_check.enabled && last_frame_.has_pose() && last_frame_.id() + 1 == frame.id();
   for (const auto& [z, i] : by_depth) {
-    if (!frame.map_point(i)) {
-      MapPointPtr mp = map_->create_map_point(*kf->unproject(i), kf.get());
+    if (!frame.map_point(i) && !failed_match[i]) {
+      const Eigen::Vector3d p = *kf->unproject(i);
+      if (check && !seen_where_predicted(last_frame_, p, frame.descriptor(i), options_.new_point_check)) continue;
+      MapPointPtr mp = map_->create_map_point(p, kf.get());
       mp->add_observation(kf.get(), i);
       kf->set_map_point(i, mp);
       mp->compute_distinctive_descriptor();

@@ -77,6 +77,7 @@ class Tracker {
   int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
   void update_last_frame();
   KeyFrame* anchor_keyframe() const;
+  void cull_outlier_streaks(const Frame& frame, int inliers);
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   void create_keyframe(Frame& frame);
 

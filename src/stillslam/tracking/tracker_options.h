@@ -1,6 +1,8 @@
 #pragma once
 #include "stillslam/optimize/pose_optimizer.h"
+#include "stillslam/tracking/depth_point_check.h"
 #include "stillslam/tracking/initial_view_check.h"
+#include "stillslam/tracking/tracking_probe.h"
 
 namespace stillslam {
 
@@ -26,10 +28,22 @@ struct TrackerOptions {
   int close_points_tracked_min = 100;  // keyframe when fewer close points are tracked...
   int close_points_untracked_min = 70; // ...and this many close points are not
   int new_keyframe_points = 100;       // points created from depth per keyframe (beyond close ones)
+  DepthPointCheckOptions new_point_check;  // only points the previous frame saw in place
+  // A keypoint whose map-point match was an outlier of the final pose
+  // optimization gets no new depth point at a keyframe (ORB-SLAM keeps such a
+  // match in the keyframe for local BA to judge instead). Off by default, see
+  // DepthPointCheckOptions::enabled.
+  bool skip_outlier_keypoints = false;
+  // A map point rejected as an outlier in this many consecutive frames that
+  // matched it is culled (0: never, the default: on the issue #20 renders it
+  // culled static points too, see bench/README.md); Tracker::cull_outlier_streaks.
+  int outlier_streak_cull = 0;
   PoseOptimizerOptions pose;
   // Track against the map without changing it (a loaded map): no keyframes,
   // no map points; never initializes a map of its own.
   bool localization_only = false;
+  // Diagnostics only (tracking/tracking_probe.h): sees every stage's result.
+  TrackingProbe probe;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
