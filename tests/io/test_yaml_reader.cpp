@@ -1,0 +1,53 @@
+// io/yaml_reader: matrices with absurd shapes are an Error naming the key
+// (no int overflow, no huge allocation), and the missing-row-comma repair of
+// ORB-SLAM3 files works on any file size (found by fuzz_euroc_sensor).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/temp_dir.h"
+#include "stillslam/core/error.h"
+#include "stillslam/io/yaml_reader.h"
+
+namespace stillslam {
+namespace {
+
+std::string matrix_error(const test::TempDir& dir, const std::string& rows, const std::string& cols) {
+  const auto file = dir.write("m.yaml", "%YAML:1.0\nT:\n  rows: " + rows + "\n  cols: " + cols + "\n  data: [1.0]\n");
+  try {
+    YamlReader(file).optional_matrix("T");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(YamlReader, MatrixShapesThatCannotBeAreErrors) {
+  test::TempDir dir;
+  // rows * cols is past int: compared as a size, not overflowed.
+  EXPECT_NE(matrix_error(dir, "65536", "65536").find("m.yaml: key 'T' has 1 data values but rows*cols = 4294967296"),
+            std::string::npos);
+  for (const char* bad : {"1e300", "2.5", "1000001", ".nan"}) {
+    EXPECT_NE(matrix_error(dir, bad, "1").find("m.yaml: key 'T' must have whole 'rows' and 'cols' up to 1000000"),
+              std::string::npos)
+        << bad;
+  }
+  EXPECT_EQ(matrix_error(dir, "1", "1"), "");
+}
+
+TEST(YamlReader, RowCommaRepairOnALongRunOfBlanks) {
+  test::TempDir dir;
+  // Rows of one number each, the first break after 100000 blanks: every
+  // break gets its comma.
+  const auto file = dir.write("rows.yaml", "%YAML:1.0\nm: !!opencv-matrix\n  rows: 2\n  cols: 2\n  dt: d\n  data: [1.5" +
+                                               std::string(100000, ' ') + "\n    -2.0\n    3.0\n    4.25]\n");
+  const auto m = YamlReader(file).optional_matrix("m");
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ((*m)(0, 0), 1.5);
+  EXPECT_EQ((*m)(0, 1), -2.0);
+  EXPECT_EQ((*m)(1, 0), 3.0);
+  EXPECT_EQ((*m)(1, 1), 4.25);
+}
+
+}  // namespace
+}  // namespace stillslam
