@@ -35,6 +35,24 @@ TEST(YamlReader, MatrixShapesThatCannotBeAreErrors) {
   EXPECT_EQ(matrix_error(dir, "1", "1"), "");
 }
 
+// OpenCV asserts (cv::Exception) when a key is looked up in a top level that
+// is not a map (found by fuzz_settings).
+TEST(YamlReader, TopLevelThatIsNotKeysIsAnError) {
+  test::TempDir dir;
+  const auto file = dir.write("list.yaml", "%YAML:1.0\n- 1\n- 2\n");
+  try {
+    YamlReader yaml(file);
+    yaml.optional_string("camera_model");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("list.yaml: the top level is a sequence, not 'key: value' lines"),
+              std::string::npos)
+        << e.what();
+  }
+  // A file with no keys at all is still read (every key is then missing).
+  EXPECT_FALSE(YamlReader(dir.write("empty.yaml", "%YAML:1.0\n")).has("camera_model"));
+}
+
 TEST(YamlReader, RowCommaRepairOnALongRunOfBlanks) {
   test::TempDir dir;
   // Rows of one number each, the first break after 100000 blanks: every

@@ -76,6 +76,13 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
   if (!storage_.isOpened()) {
     throw Error(file.string() + ": cannot be read as OpenCV YAML (it must start with '%YAML:1.0')");
   }
+  // Keys are looked up in the top-level map; OpenCV asserts on any other
+  // top level (a sequence or a single value).
+  const cv::FileNode root = storage_.root();
+  if (!root.isNone() && !root.isMap()) {
+    throw Error(file.string() + ": the top level is a " + (root.isSeq() ? "sequence" : "single value") +
+                ", not 'key: value' lines; pass a settings or sensor.yaml file");
+  }
 }
 
 bool YamlReader::has(const std::string& key) const { return !storage_[key].isNone(); }
