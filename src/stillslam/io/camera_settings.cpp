@@ -150,7 +150,8 @@ void read_camera_section(const YamlReader& yaml, CameraSettings& s) {
   }
   s.camera = read_camera(yaml, prefix, type);
   s.fps = yaml.optional_number("Camera.fps").value_or(s.fps);
-  if (s.fps <= 0) yaml.fail("Camera.fps", "must be positive");
+  // Bounded: Tracking's keyframe spacing defaults to one second of frames (an int).
+  if (!(s.fps > 0 && s.fps <= 1000)) yaml.fail("Camera.fps", "must be in (0, 1000] frames per second");
   if (const auto rgb = yaml.optional_integer("Camera.RGB")) {
     if (*rgb != 0 && *rgb != 1) yaml.fail("Camera.RGB", "must be 0 (BGR) or 1 (RGB)");
     s.rgb = *rgb == 1;
