@@ -53,6 +53,21 @@ TEST(YamlReader, TopLevelThatIsNotKeysIsAnError) {
   EXPECT_FALSE(YamlReader(dir.write("empty.yaml", "%YAML:1.0\n")).has("camera_model"));
 }
 
+// OpenCV's parser threw std::length_error on this damaged file (found by
+// fuzz_settings, kept in its corpus); it is an Error naming the file.
+TEST(YamlReader, ParserFailureOtherThanCvExceptionIsAnError) {
+  const std::filesystem::path file =
+      std::filesystem::path(STILLSLAM_SOURCE_DIR) / "tests/fuzz/corpus/settings/finding_parser_length_error.yaml";
+  try {
+    YamlReader yaml(file);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("finding_parser_length_error.yaml: not a valid OpenCV YAML file"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(YamlReader, RowCommaRepairOnALongRunOfBlanks) {
   test::TempDir dir;
   // Rows of one number each, the first break after 100000 blanks: every

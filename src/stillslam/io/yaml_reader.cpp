@@ -63,7 +63,7 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
     if (repaired != buffer.str()) {
       try {
         ok = storage_.open(repaired, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-      } catch (const cv::Exception&) {
+      } catch (const std::exception&) {
         ok = false;
       }
     }
@@ -72,6 +72,10 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
                   ")");
     }
     spdlog::warn("{}: a matrix row misses its trailing comma; read as if it were there", file.string());
+  } catch (const std::exception& e) {
+    // OpenCV's parser can also fail with a standard exception (a
+    // std::length_error on some damaged files, found by fuzz_settings).
+    throw Error(file.string() + ": not a valid OpenCV YAML file (it must start with '%YAML:1.0'; " + e.what() + ")");
   }
   if (!storage_.isOpened()) {
     throw Error(file.string() + ": cannot be read as OpenCV YAML (it must start with '%YAML:1.0')");
