@@ -347,13 +347,13 @@ TEST_F(MapFileTest, EveryCorruptedByteIsDetected) {
     write_bytes(path, bad);
     const std::string e = error_of([&] { load_map_file(path, context_); });
     EXPECT_NE(e.find("map.bin: "), std::string::npos) << "byte " << i << ": " << e;
-    EXPECT_TRUE(e.find("corrupt map file") != std::string::npos || e.find("truncated map file") != std::string::npos)
+    EXPECT_TRUE(e.find("damaged map file") != std::string::npos || e.find("truncated map file") != std::string::npos)
         << "byte " << i << ": " << e;
   }
   std::string bad = bytes;
   bad[bytes.size() / 2] ^= 0x01;
   write_bytes(path, bad);
-  EXPECT_NE(error_of([&] { load_map_file(path, context_); }).find("corrupt map file (checksum mismatch)"),
+  EXPECT_NE(error_of([&] { load_map_file(path, context_); }).find("damaged map file (checksum mismatch)"),
             std::string::npos);
 }
 

@@ -213,7 +213,7 @@ TEST_F(VocabularyTest, OtherFormatsAndDamagedFilesAreRejected) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const fs::path truncated = temp_file("truncated.bin");
   write_bytes(truncated, bytes.substr(0, bytes.size() / 2));
-  expect_load_error(truncated, "corrupt");
+  expect_load_error(truncated, "is damaged (size");
   std::string flipped = bytes;
   flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x10);
   const fs::path damaged = temp_file("damaged.bin");

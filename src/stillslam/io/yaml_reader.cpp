@@ -1,7 +1,6 @@
 #include "stillslam/io/yaml_reader.h"
 
 #include <cmath>
-#include <regex>
 
 #include <opencv2/core.hpp>
 #include <spdlog/spdlog.h>
@@ -15,10 +14,29 @@ namespace {
 
 // Some published ORB-SLAM3 files (Stereo-Inertial/EuRoC.yaml, Tbc) miss the
 // comma at the end of a matrix row; older OpenCV parsers accepted that, 4.x
-// does not. Returns the text with such commas added (unchanged if none).
+// does not. Returns the text with such commas added (unchanged if none): a
+// comma after a digit or '.' followed by blanks, one line break, blanks and a
+// number. One pass, no std::regex (its recursion overflowed the stack on a
+// long run of blanks).
 std::string add_missing_row_commas(const std::string& text) {
-  const std::regex kNumberNewlineNumber(R"(([0-9.])([ \t]*\r?\n[ \t]*)([-+]?[0-9.]))");
-  return std::regex_replace(text, kNumberNewlineNumber, "$1,$2$3");
+  const auto numeric = [](char c) { return (c >= '0' && c <= '9') || c == '.'; };
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  const std::size_t n = text.size();
+  std::string out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out += text[i];
+    if (!numeric(text[i])) continue;
+    std::size_t j = i + 1;
+    while (j < n && blank(text[j])) ++j;
+    if (j < n && text[j] == '\r') ++j;
+    if (j >= n || text[j] != '\n') continue;
+    ++j;
+    while (j < n && blank(text[j])) ++j;
+    if (j < n && (text[j] == '-' || text[j] == '+')) ++j;
+    if (j < n && numeric(text[j])) out += ',';
+  }
+  return out;
 }
 
 }  // namespace
@@ -45,7 +63,7 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
     if (repaired != text) {
       try {
         ok = storage_.open(repaired, kFromMemory);
-      } catch (const cv::Exception&) {
+      } catch (const std::exception&) {
         ok = false;
       }
     }
@@ -54,9 +72,20 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
                   ")");
     }
     spdlog::warn("{}: a matrix row misses its trailing comma; read as if it were there", file.string());
+  } catch (const std::exception& e) {
+    // OpenCV's parser can also fail with a standard exception (a
+    // std::length_error on some damaged files, found by fuzz_settings).
+    throw Error(file.string() + ": not a valid OpenCV YAML file (it must start with '%YAML:1.0'; " + e.what() + ")");
   }
   if (!storage_.isOpened()) {
     throw Error(file.string() + ": cannot be read as OpenCV YAML (it must start with '%YAML:1.0')");
+  }
+  // Keys are looked up in the top-level map; OpenCV asserts on any other
+  // top level (a sequence or a single value).
+  const cv::FileNode root = storage_.root();
+  if (!root.isNone() && !root.isMap()) {
+    throw Error(file.string() + ": the top level is a " + (root.isSeq() ? "sequence" : "single value") +
+                ", not 'key: value' lines; pass a settings or sensor.yaml file");
   }
 }
 
@@ -131,11 +160,16 @@ std::optional<Eigen::MatrixXd> YamlReader::optional_matrix(const std::string& ke
   if (!rows || !cols || *rows < 1 || *cols < 1 || !data.isSeq()) {
     fail(key, "must be a matrix with positive 'rows', 'cols' and a 'data' sequence");
   }
+  // Whole numbers small enough that rows * cols cannot overflow.
+  constexpr double kMaxSide = 1e6;
+  if (*rows != std::floor(*rows) || *cols != std::floor(*cols) || *rows > kMaxSide || *cols > kMaxSide) {
+    fail(key, "must have whole 'rows' and 'cols' up to 1000000");
+  }
   const auto r = static_cast<int>(*rows);
   const auto c = static_cast<int>(*cols);
-  if (static_cast<int>(data.size()) != r * c) {
+  if (data.size() != static_cast<std::size_t>(r) * static_cast<std::size_t>(c)) {
     fail(key, "has " + std::to_string(data.size()) + " data values but rows*cols = " +
-                  std::to_string(r * c));
+                  std::to_string(static_cast<std::size_t>(r) * static_cast<std::size_t>(c)));
   }
   Eigen::MatrixXd m(r, c);
   int i = 0;

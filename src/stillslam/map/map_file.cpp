@@ -26,8 +26,10 @@
 
 #include <zstd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -37,6 +39,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/fnv1a.h"
 #include "stillslam/map/frame.h"
+#include "stillslam/map/map_file_checks.h"
 
 namespace stillslam {
 
@@ -48,13 +51,14 @@ constexpr std::size_t kChecksumBytes = 8;
 constexpr std::uint64_t kNone = ~0ULL;
 constexpr std::uint32_t kNoCompression = 0;
 constexpr std::uint32_t kZstd = 1;
+constexpr std::uint64_t kMaxZstdRatio = 64;
 
 std::string rerun_hint() { return "re-create it with `stillslam run --save-map`"; }
 
 // A payload reader whose errors name the file (`name`) and say how to fix it.
 ByteReader map_file_reader(const char* data, std::size_t size, const std::string& name) {
   return ByteReader(data, size, [name](const std::string& detail) {
-    return Error(name + ": corrupt map file (" + detail + "); " + rerun_hint());
+    return Error(name + ": damaged map file (" + detail + "); " + rerun_hint());
   });
 }
 
@@ -112,7 +116,21 @@ struct CameraRecord {
     c.close_depth = r.get<double>();
     c.levels = r.get<std::int32_t>();
     c.scale_factor = r.get<float>();
+    if (const auto problem = c.problem()) r.fail("camera: " + *problem);
     return c;
+  }
+  // What makes the record impossible for a camera the system could have run with.
+  std::optional<std::string> problem() const {
+    const auto bad = [](double v) { return !std::isfinite(v); };
+    if (model > 1) return "model " + std::to_string(model);
+    if (bad(fx) || bad(fy) || fx <= 0 || fy <= 0) return "focal length " + describe();
+    if (bad(cx) || bad(cy) || bad(bf) || bad(close_depth) || bf < 0 || close_depth < 0) return describe();
+    if (distortion.size() > 14 || std::any_of(distortion.begin(), distortion.end(), bad)) return describe();
+    if (width < 0 || height < 0) return "image size " + describe();
+    if (levels < 1 || levels > 32 || !std::isfinite(scale_factor) || scale_factor < 1 || scale_factor > 4) {
+      return "pyramid " + describe();
+    }
+    return std::nullopt;
   }
   // Equal up to text round-off of the settings (relative 1e-9).
   bool matches(const CameraRecord& o) const {
@@ -223,6 +241,12 @@ struct MapFileAccess {
       }
     }
     if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the last map");
+    if (!contents.maps.empty() && map_ids.count(contents.active_map_id) == 0) {
+      r.fail("the active map " + std::to_string(contents.active_map_id) + " is not in the file");
+    }
+    for (std::uint64_t id : map_ids) {
+      if (id >= contents.next_map_id) r.fail("map id " + std::to_string(id) + " >= next map id");
+    }
     return contents;
   }
 
@@ -265,8 +289,16 @@ struct MapFileAccess {
         w.put(index);
       }
     }
-    w.put(static_cast<std::uint32_t>(entry.loop_edges.size()));
+    // Edges to keyframes culled since the loop closed are left out (the
+    // reader refuses edges to keyframes the map does not have).
+    std::unordered_set<std::uint64_t> saved_ids;
+    for (const KeyFramePtr& kf : keyframes) saved_ids.insert(kf->id());
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
     for (const auto& [a, b] : entry.loop_edges) {
+      if (saved_ids.count(a) != 0 && saved_ids.count(b) != 0) edges.emplace_back(a, b);
+    }
+    w.put(static_cast<std::uint32_t>(edges.size()));
+    for (const auto& [a, b] : edges) {
       w.put(a);
       w.put(b);
     }
@@ -308,6 +340,11 @@ struct MapFileAccess {
     loaded.id = r.get<std::uint64_t>();
     loaded.map = std::make_unique<Map>(loaded.id, ids);
     Map& map = *loaded.map;
+    const std::string map_label = "map " + std::to_string(loaded.id);
+    // Errors name the record: "map 0, keyframe 12, keypoint 40: ...".
+    const auto fail = [&](const std::string& record, const std::string& why) {
+      r.fail(map_label + ", " + record + ": " + why);
+    };
 
     struct PendingKeyFrame {
       std::vector<std::uint64_t> slots;
@@ -317,18 +354,21 @@ struct MapFileAccess {
     std::vector<KeyFramePtr> keyframes;
     keyframes.reserve(pending.size());
     for (PendingKeyFrame& p : pending) {
-      KeyFramePtr kf = read_keyframe(r, setup, p.slots);
+      KeyFramePtr kf = read_keyframe(r, setup, p.slots, fail);
+      const std::string label = "keyframe " + std::to_string(kf->id());
       p.parent = r.get<std::uint64_t>();
-      kf->set_origin(r.get<std::uint8_t>() != 0);
-      if (kf->id() >= next_keyframe_id) r.fail("keyframe id " + std::to_string(kf->id()) + " >= next id");
-      if (map.keyframe(kf->id())) r.fail("duplicate keyframe id " + std::to_string(kf->id()));
+      const auto origin = r.get<std::uint8_t>();
+      if (origin > 1) fail(label, "origin flag " + std::to_string(origin));
+      kf->set_origin(origin != 0);
+      if (kf->id() >= next_keyframe_id) fail(label, "id >= the file's next keyframe id");
+      if (map.keyframe(kf->id())) fail(label, "id saved twice");
       map.add_keyframe(kf);
       keyframes.push_back(std::move(kf));
     }
-    const auto keyframe_at = [&](std::uint64_t id) -> KeyFrame* {
+    const auto keyframe_at = [&](std::uint64_t id, const std::string& record) -> KeyFrame* {
       if (id == kNone) return nullptr;
       KeyFrame* kf = map.keyframe(id).get();
-      if (kf == nullptr) r.fail("unknown keyframe id " + std::to_string(id));
+      if (kf == nullptr) fail(record, "names keyframe " + std::to_string(id) + ", which the map does not have");
       return kf;
     };
 
@@ -336,6 +376,7 @@ struct MapFileAccess {
     const std::size_t n_points = r.get_count(8 + 8 + 48 + 32 + 16 + 8 + 8 + 4);
     for (std::size_t i = 0; i < n_points; ++i) {
       const auto id = r.get<std::uint64_t>();
+      const std::string label = "map point " + std::to_string(id);
       const auto first_keyframe_id = r.get<std::uint64_t>();
       Eigen::Vector3d position, normal;
       for (int k = 0; k < 3; ++k) position[k] = r.get<double>();
@@ -346,34 +387,69 @@ struct MapFileAccess {
       std::memcpy(mp->descriptor_.data(), r.get_bytes(32), 32);
       mp->min_distance_ = r.get<double>();
       mp->max_distance_ = r.get<double>();
-      mp->reference_ = keyframe_at(r.get<std::uint64_t>());
+      mp->reference_ = keyframe_at(r.get<std::uint64_t>(), label + " (reference keyframe)");
       mp->visible_ = r.get<std::int32_t>();
       mp->found_ = r.get<std::int32_t>();
+      if (id >= next_point_id) fail(label, "id >= the file's next point id");
+      if (first_keyframe_id >= next_keyframe_id) fail(label, "first keyframe id >= the file's next keyframe id");
+      if (const auto problem = map_file_checks::point(position, normal, mp->min_distance_, mp->max_distance_,
+                                                      mp->visible_, mp->found_)) {
+        fail(label, *problem);
+      }
       const std::size_t n_obs = r.get_count(12);
+      if (n_obs == 0) fail(label, "no observations");
       for (std::size_t k = 0; k < n_obs; ++k) {
-        KeyFrame* kf = keyframe_at(r.get<std::uint64_t>());
+        const std::string record = label + ", observation " + std::to_string(k);
+        KeyFrame* kf = keyframe_at(r.get<std::uint64_t>(), record);
         const auto index = r.get<std::uint32_t>();
-        if (kf == nullptr || index >= kf->size()) r.fail("observation index out of range");
+        if (kf == nullptr) fail(record, "no keyframe");
+        if (index >= kf->size()) {
+          fail(record, "keypoint " + std::to_string(index) + " of keyframe " + std::to_string(kf->id()) +
+                           ", which has " + std::to_string(kf->size()));
+        }
+        if (mp->is_observed_by(kf)) fail(record, "keyframe " + std::to_string(kf->id()) + " observes it twice");
         mp->add_observation(kf, index);
       }
-      if (id >= next_point_id) r.fail("point id " + std::to_string(id) + " >= next id");
-      if (!points.emplace(id, mp).second) r.fail("duplicate point id " + std::to_string(id));
+      if (!points.emplace(id, mp).second) fail(label, "id saved twice");
       map.add_map_point(mp);
     }
 
     for (std::size_t k = 0; k < keyframes.size(); ++k) {
       KeyFrame& kf = *keyframes[k];
+      const std::string label = "keyframe " + std::to_string(kf.id());
       for (std::size_t i = 0; i < pending[k].slots.size(); ++i) {
         const std::uint64_t id = pending[k].slots[i];
         if (id == kNone) continue;
+        const std::string record = label + ", keypoint " + std::to_string(i);
         const auto it = points.find(id);
-        if (it == points.end()) r.fail("keyframe slot names unknown point " + std::to_string(id));
+        if (it == points.end()) fail(record, "names map point " + std::to_string(id) + ", which the map does not have");
+        // Slots and observations are two views of one association.
+        const auto obs = it->second->observations().find(&kf);
+        if (obs == it->second->observations().end() || obs->second != i) {
+          fail(record, "holds map point " + std::to_string(id) + ", whose observations do not list it");
+        }
         kf.set_map_point(i, it->second);
       }
-      KeyFrame* parent = keyframe_at(pending[k].parent);
-      if (parent == &kf) r.fail("keyframe " + std::to_string(kf.id()) + " is its own parent");
+      KeyFrame* parent = keyframe_at(pending[k].parent, label + " (parent)");
+      if (parent == &kf) fail(label, "is its own parent");
       // Before the connections are rebuilt: the saved parent, not the first connection's.
       if (parent) kf.change_parent(parent);
+    }
+    for (const auto& [id, mp] : points) {
+      for (const auto& [kf, index] : mp->observations()) {
+        if (kf->map_point(index) != mp) {
+          fail("map point " + std::to_string(id), "observed as keypoint " + std::to_string(index) + " of keyframe " +
+                                                      std::to_string(kf->id()) + ", whose slot does not hold it");
+        }
+      }
+    }
+    check_spanning_tree(keyframes, fail);
+    // A map's first keyframe is its origin (a merge clears the other map's):
+    // exactly one, the root of the spanning tree.
+    const auto origins = std::count_if(keyframes.begin(), keyframes.end(), [](const auto& kf) { return kf->is_origin(); });
+    if (!keyframes.empty() && origins != 1) fail("keyframes", std::to_string(origins) + " origins, a map has one");
+    for (const KeyFramePtr& kf : keyframes) {
+      if (kf->is_origin() && kf->parent() != nullptr) fail("keyframe " + std::to_string(kf->id()), "the origin has a parent");
     }
     for (const KeyFramePtr& kf : keyframes) kf->update_connections();
 
@@ -381,23 +457,51 @@ struct MapFileAccess {
     for (std::size_t k = 0; k < n_edges; ++k) {
       const auto a = r.get<std::uint64_t>();
       const auto b = r.get<std::uint64_t>();
+      const std::string record = "loop edge " + std::to_string(k);
+      if (keyframe_at(a, record) == nullptr || keyframe_at(b, record) == nullptr || a == b) {
+        fail(record, "joins keyframes " + std::to_string(a) + " and " + std::to_string(b));
+      }
       loaded.loop_edges.emplace(a, b);
+    }
+    // Loop closing records each loop in both directions.
+    for (const auto& [a, b] : loaded.loop_edges) {
+      if (loaded.loop_edges.count({b, a}) == 0) {
+        fail("loop edges", "keyframe " + std::to_string(a) + " to " + std::to_string(b) + " without its reverse");
+      }
     }
     return loaded;
   }
 
+  // The parent links form a forest: following them from any keyframe ends.
+  template <typename Fail>
+  static void check_spanning_tree(const std::vector<KeyFramePtr>& keyframes, const Fail& fail) {
+    for (const KeyFramePtr& kf : keyframes) {
+      std::size_t steps = 0;
+      for (const KeyFrame* p = kf->parent(); p != nullptr; p = p->parent()) {
+        if (++steps > keyframes.size()) fail("keyframe " + std::to_string(kf->id()), "its parents form a cycle");
+      }
+    }
+  }
+
+  template <typename Fail>
   static KeyFramePtr read_keyframe(ByteReader& r, const std::shared_ptr<const CameraSetup>& setup,
-                                   std::vector<std::uint64_t>& slots) {
+                                   std::vector<std::uint64_t>& slots, const Fail& fail) {
     const auto id = r.get<std::uint64_t>();
+    const std::string label = "keyframe " + std::to_string(id);
     const auto frame_id = r.get<std::uint64_t>();
     const auto timestamp = r.get<double>();
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    if (!std::isfinite(timestamp)) fail(label, "timestamp " + std::to_string(timestamp));
+    Eigen::Matrix<double, 3, 4> T3x4;
     for (int row = 0; row < 3; ++row) {
-      for (int c = 0; c < 4; ++c) T.matrix()(row, c) = r.get<double>();
+      for (int c = 0; c < 4; ++c) T3x4(row, c) = r.get<double>();
     }
+    if (const auto problem = map_file_checks::pose(T3x4)) fail(label, *problem);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.matrix().topRows<3>() = T3x4;
     const std::size_t n = r.get_count(28 + 32 + 8 + 8);
     std::vector<cv::KeyPoint> keypoints(n);
-    for (cv::KeyPoint& kp : keypoints) {
+    for (std::size_t i = 0; i < n; ++i) {
+      cv::KeyPoint& kp = keypoints[i];
       kp.pt.x = r.get<float>();
       kp.pt.y = r.get<float>();
       kp.size = r.get<float>();
@@ -405,13 +509,20 @@ struct MapFileAccess {
       kp.response = r.get<float>();
       kp.octave = r.get<std::int32_t>();
       kp.class_id = r.get<std::int32_t>();
-      if (kp.octave < 0 || kp.octave >= setup->pyramid.n_levels) r.fail("keypoint octave out of range");
+      if (const auto problem = map_file_checks::keypoint(kp, setup->pyramid.n_levels)) {
+        fail(label + ", keypoint " + std::to_string(i), *problem);
+      }
     }
     cv::Mat descriptors(static_cast<int>(n), 32, CV_8U);
     if (n > 0) std::memcpy(descriptors.data, r.get_bytes(n * 32), n * 32);
     std::vector<float> u_right(n), depth(n);
     for (float& v : u_right) v = r.get<float>();
     for (float& v : depth) v = r.get<float>();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (const auto problem = map_file_checks::stereo(u_right[i], depth[i])) {
+        fail(label + ", keypoint " + std::to_string(i), *problem);
+      }
+    }
     slots.resize(n);
     for (std::uint64_t& s : slots) s = r.get<std::uint64_t>();
     Frame frame(frame_id, timestamp, setup, keypoints, keypoints, std::move(descriptors), std::move(u_right),
@@ -499,20 +610,26 @@ MapFileContents load_map_file(const std::filesystem::path& path, const MapFileCo
   std::uint64_t checksum;
   std::memcpy(&checksum, bytes.data() + bytes.size() - kChecksumBytes, kChecksumBytes);
   if (bytes.size() != expected_size || fnv1a(bytes.data(), bytes.size() - kChecksumBytes) != checksum) {
-    throw Error(name + ": corrupt map file (checksum mismatch); " + rerun_hint());
+    throw Error(name + ": damaged map file (checksum mismatch); " + rerun_hint());
   }
   const char* data = bytes.data() + kHeaderBytes;
   std::string decompressed;
   if (compression == kZstd) {
+    // The payload (descriptors, ids, floats) compresses to about two thirds;
+    // a size far past that is a damaged header, not a reason to allocate it.
+    if (raw > kMaxZstdRatio * stored + 4096) {
+      throw Error(name + ": damaged map file (payload of " + std::to_string(raw) + " bytes from " +
+                  std::to_string(stored) + " compressed); " + rerun_hint());
+    }
     decompressed.resize(raw);
     const std::size_t n = ZSTD_decompress(decompressed.data(), decompressed.size(), data, stored);
     if (ZSTD_isError(n) || n != raw) {
-      throw Error(name + ": corrupt map file (zstd: " + (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "size mismatch") +
+      throw Error(name + ": damaged map file (zstd: " + (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "size mismatch") +
                   "); " + rerun_hint());
     }
     data = decompressed.data();
   } else if (compression != kNoCompression || raw != stored) {
-    throw Error(name + ": corrupt map file (unknown payload compression " + std::to_string(compression) + "); " +
+    throw Error(name + ": damaged map file (unknown payload compression " + std::to_string(compression) + "); " +
                 rerun_hint());
   }
   ByteReader payload = map_file_reader(data, raw, name);

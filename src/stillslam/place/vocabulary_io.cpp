@@ -13,6 +13,7 @@
 // Nodes are in breadth-first order, so a node's children are the ids
 // [first_child, first_child + child_count). With k = 10, L = 5 a file is a few
 // MB and loads in a few milliseconds (one read, no parsing of text).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -95,7 +96,7 @@ class VocabularyReader {
     const std::string file = path.string();
     const std::vector<char> bytes = read_file(path);
     const auto corrupt = [&](const std::string& why) {
-      return Error("vocabulary file '" + file + "' is corrupt: " + why +
+      return Error("vocabulary file '" + file + "' is damaged (" + why + ")" +
                    "; re-copy it or rebuild it with scripts/train_vocabulary");
     };
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0) {
@@ -125,9 +126,11 @@ class VocabularyReader {
     const auto nodes = r.get<std::uint32_t>();
     const auto words = r.get<std::uint32_t>();
     if (v.branching_ < 2 || v.branching_ > 255 || v.levels_ < 1 || v.levels_ > 16 || weighting > 3)
-      throw corrupt("bad header (k " + std::to_string(v.branching_) + ", L " + std::to_string(v.levels_) + ")");
+      throw corrupt("header: k " + std::to_string(v.branching_) + ", L " + std::to_string(v.levels_) + ", weighting " +
+                    std::to_string(weighting));
     v.weighting_ = static_cast<WordWeighting>(weighting);
-    if (nodes < 1 || words < 1 || words > nodes) throw corrupt("bad node/word counts");
+    if (nodes < 1 || words < 1 || words > nodes)
+      throw corrupt("header: " + std::to_string(nodes) + " nodes, " + std::to_string(words) + " words");
     const std::size_t expected = kHeaderBytes + std::size_t{nodes} * (4 + 1 + 32) + std::size_t{words} * (4 + 8) + 8;
     if (bytes.size() != expected)
       throw corrupt("size " + std::to_string(bytes.size()) + " bytes, header says " + std::to_string(expected));
@@ -144,36 +147,57 @@ class VocabularyReader {
     r.get_all(v.word_weight_, words);
     validate(v, corrupt);
     v.index_tree();
-    for (NodeId n = 0; n < nodes; ++n)
-      if (v.depth_[n] > v.levels_) throw corrupt("tree deeper than L");
     return v;
   }
 
  private:
-  // Rejects anything transform could trip over: children must be the next
-  // unused ids (breadth-first layout), words must be exactly the leaves.
+  // Rejects anything transform could trip over and anything training cannot
+  // have written: children must be the next unused ids (breadth-first
+  // layout), leaves have no first child, the root's descriptor is zeros,
+  // words are exactly the leaves in node order, and weights are what the
+  // weighting gives (1, or an idf ln(N / N_w) between 0 and ln N).
   template <typename Corrupt>
   static void validate(const Vocabulary& v, const Corrupt& corrupt) {
     const std::size_t n = v.descriptors_.size();
     std::size_t next = 1;
     std::size_t leaves = 0;
+    const auto node = [](std::size_t p) { return "node " + std::to_string(p) + ": "; };
+    if (std::any_of(v.descriptors_[0].begin(), v.descriptors_[0].end(), [](auto b) { return b != 0; }))
+      throw corrupt(node(0) + "the root's descriptor is not zeros");
+    std::vector<int> depth(n, 0);  // index_tree's are 8 bits: a deep damaged chain would wrap
     for (std::size_t p = 0; p < n; ++p) {
+      // Breadth-first: every node but the root is a child of an earlier one.
+      if (p >= next) throw corrupt(node(p) + "unreachable from the root");
+      if (depth[p] > v.levels_)
+        throw corrupt(node(p) + "depth " + std::to_string(depth[p]) + ", L is " + std::to_string(v.levels_));
       const std::uint32_t c = v.child_count_[p];
       if (c == 0) {
+        if (v.first_child_[p] != 0)
+          throw corrupt(node(p) + "a leaf with first child " + std::to_string(v.first_child_[p]));
         ++leaves;
         continue;
       }
-      if (c > static_cast<std::uint32_t>(v.branching_) || v.first_child_[p] != next || next + c > n)
-        throw corrupt("inconsistent tree at node " + std::to_string(p));
+      if (c > static_cast<std::uint32_t>(v.branching_))
+        throw corrupt(node(p) + std::to_string(c) + " children, k is " + std::to_string(v.branching_));
+      if (v.first_child_[p] != next || next + c > n)
+        throw corrupt(node(p) + "children from " + std::to_string(v.first_child_[p]) + ", breadth-first order says " +
+                      std::to_string(next));
+      for (std::size_t i = next; i < next + c; ++i) depth[i] = depth[p] + 1;
       next += c;
     }
-    if (next != n) throw corrupt("unreachable nodes");
-    if (leaves != v.word_node_.size()) throw corrupt("word count does not match the leaves");
+    if (leaves != v.word_node_.size())
+      throw corrupt(std::to_string(v.word_node_.size()) + " words for " + std::to_string(leaves) + " leaves");
+    const bool idf = v.weighting_ == WordWeighting::kTfIdf || v.weighting_ == WordWeighting::kIdf;
+    if (idf && v.training_images_ == 0) throw corrupt("idf weights from 0 training images");
+    const double max_idf = idf ? std::log(static_cast<double>(v.training_images_)) * (1 + 1e-12) : 1.0;
     for (std::size_t w = 0; w < v.word_node_.size(); ++w) {
-      const NodeId node = v.word_node_[w];
-      if (node >= n || v.child_count_[node] != 0 || (w > 0 && node <= v.word_node_[w - 1]))
-        throw corrupt("bad word " + std::to_string(w));
-      if (!std::isfinite(v.word_weight_[w]) || v.word_weight_[w] < 0) throw corrupt("bad weight of word " + std::to_string(w));
+      const std::string word = "word " + std::to_string(w) + ": ";
+      const NodeId at = v.word_node_[w];
+      if (at >= n || v.child_count_[at] != 0 || (w > 0 && at <= v.word_node_[w - 1]))
+        throw corrupt(word + "node " + std::to_string(at) + " is not the next leaf");
+      const double weight = v.word_weight_[w];
+      if (idf ? !(weight >= 0 && weight <= max_idf) : weight != 1.0)
+        throw corrupt(word + "weight " + std::to_string(weight) + (idf ? " outside [0, ln(training images)]" : ", not 1"));
     }
   }
 };
