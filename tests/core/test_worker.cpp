@@ -118,7 +118,7 @@ TEST(Worker, PauseLetsTheCurrentItemFinishAndHoldsTheNext) {
   EXPECT_EQ(done.load(), 1);
   std::this_thread::sleep_for(20ms);
   EXPECT_EQ(started.load(), 1);  // item 1 waits
-  EXPECT_EQ(w.queued(), 0u);  // popped, held by the paused worker
+  EXPECT_EQ(w.queued(), 1u);  // taken from the queue but held by the paused worker: still waiting
   EXPECT_FALSE(w.idle());
   w.resume();
   w.wait_idle();

@@ -116,7 +116,12 @@ class Worker {
   }
 
   bool threaded() const { return mode_ == WorkerMode::Threaded; }
-  std::size_t queued() const { return queue_.size(); }
+  // Submitted and not started: also an item the thread has taken from the
+  // queue but holds while paused, so a paused worker reports what waits.
+  std::size_t queued() const {
+    std::lock_guard lock(state_mutex_);
+    return in_flight_ - (busy_ ? 1 : 0);
+  }
   // Nothing queued and nothing in progress.
   bool idle() const {
     std::lock_guard lock(state_mutex_);
