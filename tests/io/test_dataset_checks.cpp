@@ -15,21 +15,16 @@
 #include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/euroc_dataset.h"
+#include "common/error_text.h"
 
 namespace stillslam {
 namespace {
 
+using test::contains;
+using test::error_of;
+
 using test::TempDir;
 namespace fs = std::filesystem;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 std::vector<std::string> read_lines(const fs::path& file) {
   std::ifstream in(file);
@@ -51,8 +46,6 @@ void set_stamp(const fs::path& file, std::size_t line, const std::string& stamp,
   l = stamp + (end == std::string::npos ? "" : l.substr(end));
   write_lines(file, lines);
 }
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 CameraSettings tum_settings() {
   CameraSettings s;

@@ -13,24 +13,15 @@
 #include "stillslam/io/text_table.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/yaml_reader.h"
+#include "common/error_text.h"
 
 namespace stillslam {
 namespace {
 
+using test::contains;
+using test::error_of;
+
 namespace fs = std::filesystem;
-
-template <typename Read>
-std::string error_of(Read read) {
-  try {
-    read();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an Error";
-  return {};
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const std::string kBom = "\xEF\xBB\xBF";
 

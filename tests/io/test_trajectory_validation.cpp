@@ -8,25 +8,15 @@
 #include "io/temp_dir.h"
 #include "stillslam/core/error.h"
 #include "stillslam/io/trajectory.h"
+#include "common/error_text.h"
 
 namespace stillslam {
 namespace {
 
+using test::contains;
+using test::error_of;
+
 namespace fs = std::filesystem;
-
-// The message of the Error `read` throws; fails the test when none is thrown.
-template <typename Read>
-std::string error_of(Read read) {
-  try {
-    read();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an Error";
-  return {};
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // Two TUM poses whose quaternions read in the wrong order give other rotations.
 constexpr const char* kTumLines = "1341846313.6378 1 2 3 0.1 0.2 0.3 0.9273618495495704\n"

@@ -11,9 +11,13 @@
 #include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/io/tum_dataset.h"
+#include "common/error_text.h"
 
 namespace stillslam {
 namespace {
+
+using test::contains;
+using test::error_of;
 
 using test::TempDir;
 namespace fs = std::filesystem;
@@ -25,15 +29,6 @@ CameraSettings tum_settings() {
   s.camera.cy = 24;
   s.depth_map_factor = 5000;
   return s;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(TumDataset, AssociatesListsAndLoadsFrames) {
