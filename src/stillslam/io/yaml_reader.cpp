@@ -1,6 +1,7 @@
 #include "stillslam/io/yaml_reader.h"
 
 #include <cmath>
+#include <string_view>
 
 #include <opencv2/core.hpp>
 #include <spdlog/spdlog.h>
@@ -39,6 +40,28 @@ std::string add_missing_row_commas(const std::string& text) {
   return out;
 }
 
+// The line number (1-based) of the first line that starts a top-level block
+// sequence item ('-' in column 0, other than a '---' document marker), or 0.
+// Settings files are 'key: value' maps; OpenCV 4.6's parser loops forever on
+// some top-level sequences ("%YAML:1.0\n----t\n-\n-", found by
+// fuzz_settings and fuzz_euroc_sensor), so they are refused before it runs.
+std::size_t top_level_sequence_line(const std::string& text) {
+  std::size_t line = 1;
+  for (std::size_t start = 0; start < text.size(); ++line) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view row(text.data() + start, end - start);
+    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+    if (!row.empty() && row[0] == '-') {
+      const bool document_marker =
+          row.substr(0, 3) == "---" && (row.size() == 3 || row[3] == ' ' || row[3] == '\t');
+      if (!document_marker) return line;
+    }
+    start = end + 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::optional<double> node_number(const cv::FileNode& node) {
@@ -54,6 +77,11 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
   }
   // Read here (folder, permission and BOM handled by input_file.h), parsed from memory.
   const std::string text = read_input_file(file, "settings file");
+  if (const std::size_t line = top_level_sequence_line(text)) {
+    throw Error(file.string() + ":" + std::to_string(line) +
+                ": the top level is a sequence ('-' in the first column), not 'key: value' lines; pass a settings "
+                "or sensor.yaml file");
+  }
   constexpr int kFromMemory = cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML;
   try {
     storage_.open(text, kFromMemory);
