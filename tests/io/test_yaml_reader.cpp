@@ -70,14 +70,14 @@ TEST(YamlReader, FileThatHangsOpenCvsFileParserIsAnError) {
   // OpenCV's parser loops on these even from memory (fuzz_settings and
   // fuzz_euroc_sensor, minimized): refused before it runs, naming the line.
   const std::pair<const char*, const char*> loops[] = {{"%YAML:1.0\n----t\n-\n-", "loop.yaml:2: "},
-                                                       {"%YAML:1.0\n L:.\n-0\n-", "loop.yaml:3: "}};
+                                                       {"%YAML:1.0\n L:.\n-0\n-", "loop.yaml:2: "},
+                                                       {"%YAML:1.0\n a: l\n14e-\n\n", "loop.yaml:2: "}};
   for (const auto& [text, where] : loops) {
     try {
       YamlReader yaml(dir.write("loop.yaml", text));
       ADD_FAILURE() << "no error";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(std::string(where) + "the top level is a sequence"), std::string::npos)
-          << e.what();
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
     }
   }
   // A document marker is not a sequence.

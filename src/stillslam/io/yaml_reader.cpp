@@ -40,26 +40,35 @@ std::string add_missing_row_commas(const std::string& text) {
   return out;
 }
 
-// The line number (1-based) of the first line that starts a top-level block
-// sequence item ('-' in column 0, other than a '---' document marker), or 0.
-// Settings files are 'key: value' maps; OpenCV 4.6's parser loops forever on
-// some top-level sequences ("%YAML:1.0\n----t\n-\n-", found by
-// fuzz_settings and fuzz_euroc_sensor), so they are refused before it runs.
-std::size_t top_level_sequence_line(const std::string& text) {
+// A line OpenCV 4.6's parser may loop forever on, as "LINE: what is wrong",
+// or "" when the layout is that of a settings file: the top level is a map
+// whose first key starts in the first column, and no line starts a top-level
+// block sequence ('-' in column 0, other than a '---' marker). Found by
+// fuzz_settings and fuzz_euroc_sensor ("%YAML:1.0\n----t\n-\n-",
+// "%YAML:1.0\n a: l\n14e-\n\n"; tests/fuzz/known_hangs), so refused before
+// the parser runs.
+std::string layout_problem(const std::string& text) {
+  bool first_key_seen = false;
   std::size_t line = 1;
   for (std::size_t start = 0; start < text.size(); ++line) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     std::string_view row(text.data() + start, end - start);
-    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
-    if (!row.empty() && row[0] == '-') {
-      const bool document_marker =
-          row.substr(0, 3) == "---" && (row.size() == 3 || row[3] == ' ' || row[3] == '\t');
-      if (!document_marker) return line;
-    }
     start = end + 1;
+    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+    const std::size_t first = row.find_first_not_of(" \t");
+    if (first == std::string_view::npos || row[first] == '#' || row[0] == '%') continue;
+    const bool marker = row.substr(0, 3) == "---" && (row.size() == 3 || row[3] == ' ' || row[3] == '\t');
+    if (marker) continue;
+    if (row[0] == '-') {
+      return std::to_string(line) + ": the top level is a sequence ('-' in the first column), not 'key: value' lines";
+    }
+    if (!first_key_seen && first > 0) {
+      return std::to_string(line) + ": the first key is indented; top-level keys start in the first column";
+    }
+    first_key_seen = true;
   }
-  return 0;
+  return "";
 }
 
 }  // namespace
@@ -77,10 +86,8 @@ YamlReader::YamlReader(const std::filesystem::path& file) : file_(file) {
   }
   // Read here (folder, permission and BOM handled by input_file.h), parsed from memory.
   const std::string text = read_input_file(file, "settings file");
-  if (const std::size_t line = top_level_sequence_line(text)) {
-    throw Error(file.string() + ":" + std::to_string(line) +
-                ": the top level is a sequence ('-' in the first column), not 'key: value' lines; pass a settings "
-                "or sensor.yaml file");
+  if (const std::string problem = layout_problem(text); !problem.empty()) {
+    throw Error(file.string() + ":" + problem + "; pass a settings or sensor.yaml file");
   }
   constexpr int kFromMemory = cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML;
   try {
