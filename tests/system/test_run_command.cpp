@@ -2,11 +2,13 @@
 // written to disk: output files, their line counts, stats.json keys, errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "stillslam/io/camera_settings.h"
@@ -23,6 +25,19 @@ std::string read_text(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// A small walking_xyz render (400x300, one ray per pixel) in DIR/seq.
+sim::SequenceSummary write_small_sequence(const fs::path& dir, int frames, bool people) {
+  sim::SimulationOptions opts;
+  opts.trajectory = "walking_xyz";
+  opts.frames = frames;
+  opts.width = 400;
+  opts.height = 300;
+  opts.no_people = !people;
+  opts.supersampling = 1;
+  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
+  return sim::write_sequence(dir / "seq", opts);
+}
+
 std::size_t count_lines(const fs::path& p) {
   std::ifstream in(p);
   std::size_t n = 0;
@@ -36,15 +51,7 @@ TEST(RunCommand, WritesTrajectoriesAndStats) {
   if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
   const fs::path dir = fs::temp_directory_path() / "stillslam_test_run_command";
   fs::remove_all(dir);
-  sim::SimulationOptions opts;
-  opts.trajectory = "walking_xyz";
-  opts.frames = 30;
-  opts.width = 400;
-  opts.height = 300;
-  opts.no_people = true;
-  opts.supersampling = 1;
-  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
-  const sim::SequenceSummary seq = sim::write_sequence(dir / "seq", opts);
+  const sim::SequenceSummary seq = write_small_sequence(dir, 30, false);
   const fs::path out = dir / "out";
   const std::string cmd = binary.string() + " run --config " + seq.settings.string() + " --input " +
                           (dir / "seq").string() + " --output " + out.string() +
@@ -89,14 +96,7 @@ TEST(RunCommand, OrbSlam3SettingsRunWithTheShippedModel) {
   if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
   const fs::path dir = fs::temp_directory_path() / "stillslam_test_run_orbslam3_settings";
   fs::remove_all(dir);
-  sim::SimulationOptions opts;
-  opts.trajectory = "walking_xyz";
-  opts.frames = 6;
-  opts.width = 400;
-  opts.height = 300;
-  opts.supersampling = 1;
-  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
-  const sim::SequenceSummary seq = sim::write_sequence(dir / "seq", opts);
+  const sim::SequenceSummary seq = write_small_sequence(dir, 6, true);
   const CameraCalibration c = load_camera_settings(seq.settings).camera;
   const fs::path config = dir / "TUM3.yaml";
   std::ofstream(config) << "%YAML:1.0\n"
@@ -128,6 +128,43 @@ TEST(RunCommand, OrbSlam3SettingsRunWithTheShippedModel) {
     EXPECT_TRUE(frame.contains("mask_coverage"));
     EXPECT_GT(frame["times_ms"]["segmentation"].get<double>(), 0.0);  // the network ran on this frame
   }
+  fs::remove_all(dir);
+}
+
+// --skip-bad-frames: a missing frame ends the run without the flag; with it
+// the run goes on, warns naming the file and counts the frame in stats.json.
+TEST(RunCommand, SkipBadFramesGoesOnPastAMissingFrame) {
+  const fs::path binary(STILLSLAM_BINARY);
+  if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
+  const fs::path dir = fs::temp_directory_path() / "stillslam_test_run_skip_bad_frames";
+  fs::remove_all(dir);
+  const sim::SequenceSummary seq = write_small_sequence(dir, 20, false);
+  std::vector<fs::path> rgb;
+  for (const auto& e : fs::directory_iterator(dir / "seq" / "rgb")) rgb.push_back(e.path());
+  std::sort(rgb.begin(), rgb.end());
+  ASSERT_EQ(rgb.size(), 20u);
+  const fs::path missing = rgb[12];
+  fs::remove(missing);
+
+  const std::string base = binary.string() + " run --config " + seq.settings.string() + " --input " +
+                           (dir / "seq").string() + " --no-segmentation --deterministic --vocabulary none";
+  const std::string stops = base + " --output " + (dir / "out1").string() + " > " + (dir / "log1.txt").string() +
+                            " 2>&1";
+  EXPECT_NE(std::system(stops.c_str()), 0);
+  EXPECT_NE(read_text(dir / "log1.txt").find(missing.string() + ": image file is missing"), std::string::npos)
+      << read_text(dir / "log1.txt");
+
+  const std::string skips = base + " --skip-bad-frames --output " + (dir / "out2").string() + " > " +
+                            (dir / "log2.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(skips.c_str()), 0) << read_text(dir / "log2.txt");
+  const std::string log = read_text(dir / "log2.txt");
+  EXPECT_NE(log.find("skipping bad frame 12 (1 skipped so far): " + missing.string() + ": image file is missing"),
+            std::string::npos)
+      << log;
+  std::ifstream stats_file(dir / "out2" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["summary"]["skipped_frames"].get<std::size_t>(), 1u);
+  EXPECT_EQ(stats["frames"].size(), 19u);
   fs::remove_all(dir);
 }
 
