@@ -19,6 +19,21 @@ std::string to_string(RunEnd end) {
   return "finished";
 }
 
+void collect_system_results(const System& system, RunResult& out) {
+  for (const MapPose& p : system.trajectory_with_maps()) {
+    out.trajectory.push_back(p.pose);
+    out.trajectory_map_ids.push_back(p.map_id);
+  }
+  out.keyframes = system.keyframe_trajectory();
+  out.mapper = system.mapper_stats();
+  out.loop_closer = system.loop_closer_stats();
+  for (const FrameStats& f : out.frames) out.relocalizations += f.reason == "relocalized" ? 1 : 0;
+  out.map_points = system.num_map_points();
+  out.maps = system.num_maps();
+  out.new_maps = system.new_maps_started();
+  out.merges = system.merges();
+}
+
 RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options) {
   RunResult out;
   Stopwatch wall;
@@ -80,18 +95,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
       out.map_file_error = e.what();
     }
   }
-  for (const MapPose& p : system.trajectory_with_maps()) {
-    out.trajectory.push_back(p.pose);
-    out.trajectory_map_ids.push_back(p.map_id);
-  }
-  out.keyframes = system.keyframe_trajectory();
-  out.mapper = system.mapper_stats();
-  out.loop_closer = system.loop_closer_stats();
-  for (const FrameStats& f : out.frames) out.relocalizations += f.reason == "relocalized" ? 1 : 0;
-  out.map_points = system.num_map_points();
-  out.maps = system.num_maps();
-  out.new_maps = system.new_maps_started();
-  out.merges = system.merges();
+  collect_system_results(system, out);
   out.skipped_frames = dataset.skipped_frames();
   out.frames_in_input = dataset.size();
   if (out.error) {

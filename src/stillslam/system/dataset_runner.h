@@ -67,6 +67,12 @@ struct RunResult {
   double save_map_ms = 0;
 };
 
+// Fills `out` from a system that has shut down: the trajectory with map
+// ids, keyframes, mapping and loop-closing totals, relocalizations (from
+// out.frames), map points, maps, new maps and merges. For other front ends
+// than run_dataset (the live ROS 2 node).
+void collect_system_results(const System& system, RunResult& out);
+
 // Construction errors (bad settings for this sensor, model) throw; errors
 // while reading frames end the run and are returned in `error`.
 RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options);
