@@ -82,9 +82,12 @@ void replay(const ReplayArgs& args) {
   if (args.lockstep) state.emplace(participant, std_msgs_msg_dds__String__desc, args.state_topic);
 
   const std::string where = " on DDS domain " + std::to_string(args.domain) + (args.network ? "" : " (loopback)");
-  for (const ros2::DdsEndpoint* e : {static_cast<const ros2::DdsEndpoint*>(&first_writer),
-                                     static_cast<const ros2::DdsEndpoint*>(&second_writer),
-                                     static_cast<const ros2::DdsEndpoint*>(state ? &*state : nullptr)}) {
+  // The node's state topic first: the node creates its image readers before
+  // its outputs, so other subscribers of the images (a viewer, a test) cannot
+  // make the replay start before the node listens.
+  for (const ros2::DdsEndpoint* e : {static_cast<const ros2::DdsEndpoint*>(state ? &*state : nullptr),
+                                     static_cast<const ros2::DdsEndpoint*>(&first_writer),
+                                     static_cast<const ros2::DdsEndpoint*>(&second_writer)}) {
     if (e == nullptr || args.wait_subscriber <= 0) continue;
     if (!e->wait_matched(1, to_ms(args.wait_subscriber))) {
       throw Error("no ROS 2 node matched " + e->name() + where + " within " + std::to_string(args.wait_subscriber) +

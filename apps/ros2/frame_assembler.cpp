@@ -40,10 +40,12 @@ SensorType sensor_of(const Settings& settings) {
 FrameAssembler::FrameAssembler(const Settings& settings, bool rectified_input)
     : sensor_(sensor_of(settings)),
       size_(settings.camera.width, settings.camera.height),
-      settings_file_(settings.file.string()) {
+      settings_file_(settings.file.string()),
+      camera_(settings.camera) {
   if (sensor_ != SensorType::Stereo) return;
   if (settings.stereo->rectified) {
     rectified_ = settings.stereo;
+    camera_ = rectified_->left;
     return;
   }
   if (size_.width <= 0 || size_.height <= 0) {
@@ -53,6 +55,7 @@ FrameAssembler::FrameAssembler(const Settings& settings, bool rectified_input)
   }
   rectifier_ = std::make_unique<StereoRectifier>(*settings.stereo, size_);
   rectified_ = rectifier_->rectified();
+  camera_ = rectified_->left;
   rectify_ = !rectified_input;
 }
 

@@ -30,6 +30,8 @@ class FrameAssembler {
   SensorType sensor() const { return sensor_; }
   // The calibration the System works in (stereo), as the dataset readers give it.
   std::optional<StereoCalibration> rectified_stereo() const { return rectified_; }
+  // The camera the System's images are in: the rectified left camera, or the RGB-D camera.
+  const CameraCalibration& camera() const { return camera_; }
   // `topics` name the two inputs for messages, "left,right" style.
   SensorFrame assemble(const ImagePair& pair, std::size_t index, const std::string& first_topic,
                        const std::string& second_topic) const;
@@ -41,6 +43,7 @@ class FrameAssembler {
   bool rectify_ = false;
   std::unique_ptr<StereoRectifier> rectifier_;
   std::optional<StereoCalibration> rectified_;
+  CameraCalibration camera_;
 };
 
 }  // namespace stillslam::ros2

@@ -78,12 +78,7 @@ void ImageReceiver::on_camera_info(const sensor_msgs_msg_dds__CameraInfo_& messa
   ++camera_infos_;
   if (camera_info_checked_) return;
   camera_info_checked_ = true;
-  const std::optional<StereoCalibration> stereo = assembler_.rectified_stereo();
-  if (!stereo) {
-    spdlog::info("ros2: CameraInfo on {}: {}x{}", camera_info_->name(), message.width, message.height);
-    return;
-  }
-  if (const auto why = camera_info_mismatch(message, stereo->left)) {
+  if (const auto why = camera_info_mismatch(message, assembler_.camera())) {
     spdlog::warn("ros2: {} on {} (the settings file is used as it is)", *why, camera_info_->name());
   } else {
     spdlog::info("ros2: CameraInfo on {} agrees with the settings", camera_info_->name());

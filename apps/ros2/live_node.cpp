@@ -34,9 +34,11 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
   FrameStamps stamps;
   Mailbox<SensorFrame> mailbox;
   {
+    // Readers first: a peer that sees the node's outputs matched knows its
+    // inputs exist too (ros2-replay --lockstep waits for the state topic).
+    ImageReceiver receiver(participant, options, assembler, mailbox, stamps, stop);
     SnapshotPublisher publisher(participant, system.publisher(), stamps, options.topics, options.map_frame,
                                 options.camera_frame, options.path_max_poses);
-    ImageReceiver receiver(participant, options, assembler, mailbox, stamps, stop);
     spdlog::info("ros2: listening on {} and {} ({})", dds_topic_name(options.topics.first),
                  dds_topic_name(options.topics.second), to_string(assembler.sensor()));
     try {
