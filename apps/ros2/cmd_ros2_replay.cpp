@@ -51,7 +51,7 @@ milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(
 
 void replay(const ReplayArgs& args) {
   SignalWatcher signals;
-  if (!(args.rate > 0 && args.rate <= 100)) throw Error("--rate " + std::to_string(args.rate) + " is out of range (0, 100]");
+  if (!(args.rate > 0 && args.rate <= 100)) throw Error(fmt::format("--rate {} is out of range (0, 100]", args.rate));
   const Settings settings = load_settings(args.config);
   const auto dataset = open_dataset(args.folder, settings);
   const bool stereo = dataset->sensor() == SensorType::Stereo;
@@ -90,7 +90,7 @@ void replay(const ReplayArgs& args) {
                                      static_cast<const ros2::DdsEndpoint*>(&second_writer)}) {
     if (e == nullptr || args.wait_subscriber <= 0) continue;
     if (!e->wait_matched(1, to_ms(args.wait_subscriber))) {
-      throw Error("no ROS 2 node matched " + e->name() + where + " within " + std::to_string(args.wait_subscriber) +
+      throw Error("no ROS 2 node matched " + e->name() + where + " within " + fmt::format("{}", args.wait_subscriber) +
                   " s (start `stillslam ros2` with the same --domain and --network, or raise --wait-subscriber)");
     }
   }
@@ -127,7 +127,7 @@ void replay(const ReplayArgs& args) {
       if (states >= sent) break;
       if (std::chrono::steady_clock::now() > deadline) {
         throw Error("ros2-replay --lockstep: no tracking state on " + state->name() + " for frame " +
-                    std::to_string(i) + " within " + std::to_string(args.lockstep_timeout) + " s");
+                    std::to_string(i) + " within " + fmt::format("{}", args.lockstep_timeout) + " s");
       }
       std::this_thread::sleep_for(milliseconds(2));
     }

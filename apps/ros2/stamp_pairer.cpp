@@ -3,13 +3,15 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <spdlog/fmt/fmt.h>
+
 #include "stillslam/core/error.h"
 
 namespace stillslam::ros2 {
 
 void PairingOptions::check() const {
   if (!(tolerance_s >= 0 && tolerance_s <= 1)) {
-    throw Error("--pair-tolerance " + std::to_string(tolerance_s) + " is out of range 0..1 s");
+    throw Error(fmt::format("--pair-tolerance {} is out of range 0..1 s", tolerance_s));
   }
   if (max_waiting < 1) throw Error("pairing needs room for at least one waiting message per topic");
 }

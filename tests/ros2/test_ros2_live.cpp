@@ -162,5 +162,49 @@ TEST(Ros2Live, NodePosesMatchTheOfflineRunOverLoopback) {
   fs::remove_all(tmp);
 }
 
+// With segmentation on, the node also sends the dynamic mask of every frame
+// (the clip has no people: all zeros, but the layout is what a ROS 2 viewer needs).
+TEST(Ros2Live, DynamicMaskIsAMono8ImageOfTheFrame) {
+  REQUIRE_STILLSLAM_BINARY();
+  if (!fs::exists(kClip)) GTEST_SKIP() << kClip << " is absent (../shared is not on this machine)";
+  const fs::path tmp = fs::temp_directory_path() / ("stillslam_ros2_mask_" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  const int domain = 101 + static_cast<int>(::getpid() % 49);
+  const std::string d = std::to_string(domain);
+  DdsNetworkOptions network;
+  network.domain = domain;
+  const DdsParticipant participant(network);
+  const DdsReader<sensor_msgs_msg_dds__Image_> mask(participant, sensor_msgs_msg_dds__Image__desc, "stillslam/dynamic_mask");
+  const DdsReader<std_msgs_msg_dds__String_> state(participant, std_msgs_msg_dds__String__desc, "stillslam/tracking_state");
+  test::ChildProcess node({"ros2", "--config", kConfig, "--output", tmp.string(), "--domain", d, "--vocabulary",
+                           "none", "--rectified-input", "--max-frames", "3"});
+  ASSERT_TRUE(mask.wait_matched(1, 30s)) << "the node did not come up";
+  test::ChildProcess replay({"ros2-replay", kClip.string(), "--config", kConfig, "--domain", d, "--lockstep",
+                             "--max-frames", "3", "--wait-subscriber", "30", "--lockstep-timeout", "60"});
+  std::size_t masks = 0, states = 0;
+  std::string bad;
+  const auto deadline = std::chrono::steady_clock::now() + 120s;
+  while (!(replay.exited() && node.exited() && states >= 3) && std::chrono::steady_clock::now() < deadline) {
+    mask.take([&](const sensor_msgs_msg_dds__Image_& m) {
+      ++masks;
+      bool binary = true;
+      for (std::uint32_t i = 0; i < m.data._length; ++i) binary = binary && (m.data._buffer[i] == 0 || m.data._buffer[i] == 255);
+      if (std::string(m.encoding) != "mono8" || m.width != 752 || m.height != 480 || m.step != 752 ||
+          m.data._length != 752u * 480u || std::string(m.header.frame_id) != "camera" || !binary) {
+        bad = "mask layout";
+      }
+    });
+    states += state.take([](const std_msgs_msg_dds__String_&) {});
+    std::this_thread::sleep_for(5ms);
+  }
+  ASSERT_TRUE(replay.exited() && node.exited()) << "did not finish within 120 s";
+  EXPECT_EQ(replay.wait(), 0) << replay.output();
+  EXPECT_EQ(node.wait(), 0) << node.output();  // --max-frames 3: the node ends by itself
+  EXPECT_EQ(bad, "");
+  EXPECT_EQ(states, 3u);
+  EXPECT_EQ(masks, 3u);
+  fs::remove_all(tmp);
+}
+
 }  // namespace
 }  // namespace stillslam::ros2
