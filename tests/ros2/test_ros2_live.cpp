@@ -162,6 +162,69 @@ TEST(Ros2Live, NodePosesMatchTheOfflineRunOverLoopback) {
   fs::remove_all(tmp);
 }
 
+// RGB-D over loopback (colour bgr8, depth 32FC1 in metres) on a small
+// generated sequence: needs no ../shared.
+TEST(Ros2Live, RgbdSequenceMatchesTheOfflineRun) {
+  REQUIRE_STILLSLAM_BINARY();
+  const fs::path tmp = fs::temp_directory_path() / ("stillslam_ros2_rgbd_" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  const std::string seq = (tmp / "seq").string(), settings = (tmp / "seq" / "settings.yaml").string();
+  const test::CommandRun sim = test::run_stillslam(
+      "simulate --out " + seq + " --frames 12 --width 320 --height 240 --supersampling 1 --people 1", true);
+  ASSERT_EQ(sim.status, 0) << sim.out;
+  const int domain = 151 + static_cast<int>(::getpid() % 49);
+  const std::string d = std::to_string(domain);
+  DdsNetworkOptions network;
+  network.domain = domain;
+  const DdsParticipant participant(network);
+  const DdsReader<geometry_msgs_msg_dds__PoseStamped_> pose(participant, geometry_msgs_msg_dds__PoseStamped__desc, "stillslam/pose");
+  const DdsReader<sensor_msgs_msg_dds__Image_> depth(participant, sensor_msgs_msg_dds__Image__desc, "camera/depth/image_raw");
+  test::ChildProcess node({"ros2", "--config", settings, "--output", (tmp / "node").string(), "--domain", d,
+                           "--no-segmentation", "--deterministic", "--vocabulary", "none", "--max-frames", "12"});
+  ASSERT_TRUE(pose.wait_matched(1, 30s)) << "the node did not come up";
+  test::ChildProcess replay({"ros2-replay", seq, "--config", settings, "--domain", d, "--lockstep",
+                             "--wait-subscriber", "30", "--lockstep-timeout", "60"});
+  std::map<std::int64_t, Eigen::Isometry3d> poses;
+  std::size_t depths = 0;
+  std::string bad;
+  const auto deadline = std::chrono::steady_clock::now() + 120s;
+  while (!(replay.exited() && node.exited()) && std::chrono::steady_clock::now() < deadline) {
+    pose.take([&](const geometry_msgs_msg_dds__PoseStamped_& m) {
+      poses[stamp_nanoseconds(m.header.stamp)] = pose_from_message(m.pose);
+    });
+    depth.take([&](const sensor_msgs_msg_dds__Image_& m) {
+      ++depths;
+      if (std::string(m.encoding) != "32FC1" || m.width != 320 || m.height != 240 || m.step != 4 * 320) bad = "depth layout";
+    });
+    std::this_thread::sleep_for(5ms);
+  }
+  pose.take([&](const geometry_msgs_msg_dds__PoseStamped_& m) {
+    poses[stamp_nanoseconds(m.header.stamp)] = pose_from_message(m.pose);
+  });
+  ASSERT_TRUE(replay.exited() && node.exited()) << "did not finish within 120 s";
+  ASSERT_EQ(replay.wait(), 0) << replay.output();
+  ASSERT_EQ(node.wait(), 0) << node.output();
+  EXPECT_EQ(bad, "");
+  EXPECT_EQ(depths, 12u);
+  const test::CommandRun offline = test::run_stillslam("run --config " + settings + " --input " + seq + " --output " +
+                                                           (tmp / "offline").string() +
+                                                           " --no-segmentation --deterministic --vocabulary none",
+                                                       true);
+  ASSERT_EQ(offline.status, 0) << offline.out;
+  const Trajectory expected = read_trajectory(tmp / "offline" / "trajectory_live.txt");
+  ASSERT_GE(expected.size(), 10u);
+  ASSERT_EQ(poses.size(), expected.size());
+  double worst = 0;
+  auto it = poses.begin();
+  for (const StampedPose& e : expected) {
+    EXPECT_NEAR(static_cast<double>(it->first) * 1e-9, e.timestamp, 1e-6);
+    worst = std::max(worst, (it->second.translation() - e.T_world_cam.translation()).norm());
+    ++it;
+  }
+  EXPECT_LT(worst, 0.01);
+  fs::remove_all(tmp);
+}
+
 // With segmentation on, the node also sends the dynamic mask of every frame
 // (the clip has no people: all zeros, but the layout is what a ROS 2 viewer needs).
 TEST(Ros2Live, DynamicMaskIsAMono8ImageOfTheFrame) {
