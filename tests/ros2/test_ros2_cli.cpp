@@ -39,7 +39,7 @@ TEST(Ros2Cli, ReplayWithoutANodeStopsAfterItsTimeout) {
   REQUIRE_STILLSLAM_BINARY();
   const fs::path clip = fs::path(STILLSLAM_SHARED_DIR) / "data" / "euroc_V1_01_micro";
   if (!fs::exists(clip)) GTEST_SKIP() << clip << " is absent (../shared is not on this machine)";
-  const std::string domain = std::to_string(200 + ::getpid() % 30);
+  const std::string domain = std::to_string(201 + ::getpid() % 30);  // each test its own range of domains
   const test::CommandRun r = test::run_stillslam("ros2-replay " + clip.string() + " --config " + kSource +
                                                      "/config/euroc.yaml --wait-subscriber 0.5 --domain " + domain,
                                                  true);

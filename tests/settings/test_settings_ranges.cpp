@@ -252,7 +252,7 @@ TEST(SettingsRanges, ShippedPresetsAndSimulatorSettingsLoad) {
     EXPECT_NO_THROW(load_settings(entry.path()));
     ++presets;
   }
-  EXPECT_EQ(presets, 7);
+  EXPECT_EQ(presets, 10);  // TUM x3, EuRoC, KITTI x3, ZED 2i 720p, VGA, 720p low-texture
   TempDir dir;
   const fs::path model = fs::path(STILLSLAM_SOURCE_DIR) / "models" / "yolo11n-seg_384x512.onnx";
   const sim::SimulationOptions options;
