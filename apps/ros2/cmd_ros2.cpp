@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "frame_assembler.h"
 #include "live_node.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
@@ -17,7 +18,6 @@
 #include "stillslam/io/trajectory.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/system/run_summary.h"
-#include "frame_assembler.h"
 
 namespace stillslam::apps {
 namespace {
@@ -48,7 +48,9 @@ ros2::NodeTopics input_topics(const Ros2Args& args, SensorType sensor) {
     topics.first = args.rgb.empty() ? "camera/color/image_raw" : args.rgb;
     topics.second = args.depth.empty() ? "camera/depth/image_raw" : args.depth;
   }
-  topics.camera_info = args.camera_info;
+  if (args.camera_info != "none") {
+    topics.camera_info = args.camera_info.empty() ? ros2::camera_info_topic(topics.first) : args.camera_info;
+  }
   return topics;
 }
 
@@ -165,7 +167,8 @@ void add_ros2_command(CLI::App& app) {
   cmd->add_option("--right", args->right, "right image topic (stereo; default camera/right/image_raw)");
   cmd->add_option("--rgb", args->rgb, "colour image topic (RGB-D; default camera/color/image_raw)");
   cmd->add_option("--depth", args->depth, "depth image topic, 16UC1 mm or 32FC1 m (RGB-D; default camera/depth/image_raw)");
-  cmd->add_option("--camera-info", args->camera_info, "CameraInfo topic to check against the settings (default: none)");
+  cmd->add_option("--camera-info", args->camera_info, "CameraInfo topic checked once against the settings (default: the camera_info beside the left / colour "
+                  "topic; 'none': not subscribed)");
   cmd->add_option("--output", args->output, "output folder (default ros2_output)");
   cmd->add_flag("--force", args->force, "replace an earlier run's outputs in --output");
   cmd->add_option("--domain", args->domain, "DDS domain (ROS_DOMAIN_ID), 0..232 (default 0)");

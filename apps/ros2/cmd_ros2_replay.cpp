@@ -18,14 +18,14 @@
 #include "commands.h"
 #include "dds.h"
 #include "image_message.h"
+#include "ros_time.h"
+#include "sensor_msgs/msg/CameraInfo.h"
+#include "sensor_msgs/msg/Image.h"
 #include "signal_watcher.h"
 #include "std_msgs/msg/String.h"
 #include "stillslam/core/error.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/settings/settings.h"
-#include "ros_time.h"
-#include "sensor_msgs/msg/CameraInfo.h"
-#include "sensor_msgs/msg/Image.h"
 
 namespace stillslam::apps {
 namespace {
@@ -40,12 +40,6 @@ struct ReplayArgs {
   bool network = false, lockstep = false;
   std::size_t max_frames = 0;
 };
-
-// "camera/left/image_raw" -> "camera/left/camera_info".
-std::string camera_info_topic(const std::string& image_topic) {
-  const std::size_t slash = image_topic.rfind('/');
-  return (slash == std::string::npos ? std::string() : image_topic.substr(0, slash + 1)) + "camera_info";
-}
 
 milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(seconds * 1000)); }
 
@@ -75,9 +69,9 @@ void replay(const ReplayArgs& args) {
   const ros2::DdsWriter<sensor_msgs_msg_dds__Image_> first_writer(participant, sensor_msgs_msg_dds__Image__desc, first);
   const ros2::DdsWriter<sensor_msgs_msg_dds__Image_> second_writer(participant, sensor_msgs_msg_dds__Image__desc, second);
   const ros2::DdsWriter<sensor_msgs_msg_dds__CameraInfo_> first_info(participant, sensor_msgs_msg_dds__CameraInfo__desc,
-                                                                      camera_info_topic(first));
+                                                                      ros2::camera_info_topic(first));
   const ros2::DdsWriter<sensor_msgs_msg_dds__CameraInfo_> second_info(
-      participant, sensor_msgs_msg_dds__CameraInfo__desc, camera_info_topic(second));
+      participant, sensor_msgs_msg_dds__CameraInfo__desc, ros2::camera_info_topic(second));
   std::optional<ros2::DdsReader<std_msgs_msg_dds__String_>> state;
   if (args.lockstep) state.emplace(participant, std_msgs_msg_dds__String__desc, args.state_topic);
 

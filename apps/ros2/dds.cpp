@@ -40,6 +40,11 @@ std::string dds_topic_name(const std::string& ros_name) {
   return "rt/" + ros_name.substr(start);
 }
 
+std::string camera_info_topic(const std::string& image_topic) {
+  const std::size_t slash = image_topic.rfind('/');
+  return (slash == std::string::npos ? std::string() : image_topic.substr(0, slash + 1)) + "camera_info";
+}
+
 DdsParticipant::DdsParticipant(const DdsNetworkOptions& options) {
   const auto xml = cyclone_config_xml(options);
   const auto domain = static_cast<dds_domainid_t>(options.domain);

@@ -26,6 +26,9 @@ QosProfile parse_qos_profile(const std::string& text, const std::string& option)
 
 // ROS 2's topic name on DDS: "rt/" + the name without its leading '/'.
 std::string dds_topic_name(const std::string& ros_name);
+// The CameraInfo beside an image topic, as ROS 2 camera drivers name it:
+// "camera/left/image_raw" -> "camera/left/camera_info".
+std::string camera_info_topic(const std::string& image_topic);
 
 class DdsParticipant {
  public:

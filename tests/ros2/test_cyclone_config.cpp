@@ -37,6 +37,8 @@ TEST(CycloneConfig, RejectsDomainOutOfRange) {
 TEST(DdsTopics, RosNamesGetTheRtPrefix) {
   EXPECT_EQ(dds_topic_name("/camera/left/image_raw"), "rt/camera/left/image_raw");
   EXPECT_EQ(dds_topic_name("tf"), "rt/tf");
+  EXPECT_EQ(camera_info_topic("/zed/zed_node/left/image_rect_color"), "/zed/zed_node/left/camera_info");
+  EXPECT_EQ(camera_info_topic("image"), "camera_info");
   EXPECT_TRUE(test::contains(test::error_of([] { dds_topic_name("/"); }), "empty ROS 2 topic name"));
   EXPECT_EQ(parse_qos_profile("sensor_data", "--qos"), QosProfile::SensorData);
   EXPECT_TRUE(test::contains(test::error_of([] { parse_qos_profile("fast", "--qos"); }), "--qos 'fast'"));

@@ -70,8 +70,7 @@ TEST(Ros2Live, NodePosesMatchTheOfflineRunOverLoopback) {
   const DdsReader<sensor_msgs_msg_dds__CameraInfo_> info(participant, sensor_msgs_msg_dds__CameraInfo__desc, "camera/right/camera_info");
 
   test::ChildProcess node({"ros2", "--config", kConfig, "--output", (tmp / "node").string(), "--domain", d,
-                           "--no-segmentation", "--deterministic", "--vocabulary", "none", "--rectified-input",
-                           "--camera-info", "camera/left/camera_info"});
+                           "--no-segmentation", "--deterministic", "--vocabulary", "none", "--rectified-input"});
   ASSERT_TRUE(pose.wait_matched(1, 30s) && state.wait_matched(1, 30s)) << "the node did not come up";
   test::ChildProcess replay({"ros2-replay", kClip.string(), "--config", kConfig, "--domain", d, "--lockstep",
                              "--wait-subscriber", "30", "--lockstep-timeout", "60"});
@@ -135,6 +134,8 @@ TEST(Ros2Live, NodePosesMatchTheOfflineRunOverLoopback) {
   EXPECT_EQ(stats["ros2"]["received"], nlohmann::json({95, 95}));
   EXPECT_EQ(stats["ros2"]["unpaired"], nlohmann::json({0, 0}));
   EXPECT_EQ(stats["ros2"]["dropped_stale"], 0);
+  EXPECT_EQ(stats["ros2"]["camera_info_messages"], 95);  // the default: camera/left/camera_info
+  EXPECT_NE(node.output().find("CameraInfo on rt/camera/left/camera_info agrees with the settings"), std::string::npos);
   EXPECT_EQ(stats["end"]["reason"], "interrupted");
   EXPECT_EQ(stats["end"]["signal"], "SIGTERM");
   EXPECT_TRUE(fs::exists(tmp / "node" / "trajectory.txt"));
