@@ -5,7 +5,9 @@
 // map with --save-map); trajectory_live.txt grows while it runs. A signal is
 // the normal end of a live node: exit 0.
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <iostream>
 
 #include "commands.h"
@@ -117,6 +119,7 @@ void run_node(const Ros2Args& args) {
   options.path_max_poses = args.path_max_poses;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.save_map = args.save_map;
+  options.progress = ProgressOptions{.terminal = isatty(fileno(stderr)) != 0};
   options.check();
   ros2::DdsNetworkOptions network;
   network.domain = args.domain;

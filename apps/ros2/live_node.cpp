@@ -39,6 +39,8 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
     ImageReceiver receiver(participant, options, assembler, mailbox, stamps, stop);
     SnapshotPublisher publisher(participant, system.publisher(), stamps, options.topics, options.map_frame,
                                 options.camera_frame, options.path_max_poses);
+    std::optional<ProgressReporter> progress;
+    if (options.progress) progress.emplace(system.publisher(), *options.progress);
     spdlog::info("ros2: listening on {} and {} ({})", dds_topic_name(options.topics.first),
                  dds_topic_name(options.topics.second), to_string(assembler.sensor()));
     try {
@@ -54,6 +56,7 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
     }
     receiver.stop();
     publisher.stop();
+    if (progress) progress->stop();
     if (!out.run.error) out.run.error = receiver.error();
     out.received_first = receiver.received_first();
     out.received_second = receiver.received_second();

@@ -13,6 +13,7 @@
 // stop flag, at --max-frames, or at the first input error.
 #include <atomic>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "dds.h"
 #include "stamp_pairer.h"
 #include "stillslam/system/dataset_runner.h"
+#include "stillslam/system/progress.h"
 
 namespace stillslam::ros2 {
 
@@ -44,6 +46,7 @@ struct LiveNodeOptions {
   std::size_t path_max_poses = 10000;
   std::optional<std::size_t> max_frames;
   std::filesystem::path save_map;
+  std::optional<ProgressOptions> progress;  // a progress line on stderr while it runs
   void check() const;
 };
 
