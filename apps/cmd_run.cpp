@@ -11,6 +11,7 @@
 // --save-map FILE writes every map at the end (also after a signal or an input
 // error); --load-map FILE starts from a saved map (relocalizing first), and
 // with --localization only tracks against it (no keyframes, no mapping).
+// --save-frames DIR writes the annotated frames as PNG (apps/frame_saver.h).
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -18,8 +19,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "commands.h"
+#include "frame_saver.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
 #include "signal_watcher.h"
@@ -55,6 +58,8 @@ struct RunArgs {
   bool force = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
+  std::string save_frames;
+  int save_frames_every = 1;
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
@@ -81,6 +86,14 @@ void run(const RunArgs& args) {
   dataset_options.skip_bad_frames = args.skip_bad_frames;
   const auto dataset = open_dataset(args.input, settings, dataset_options);
   prepare_output_folder(out_dir, previous);
+  std::unique_ptr<FrameSaver> saver;
+  if (!args.save_frames.empty()) {
+    FrameSaverOptions saver_options;
+    saver_options.dir = args.save_frames;
+    saver_options.every = args.save_frames_every;
+    saver_options.wait_when_full = args.deterministic;  // a deterministic run saves every frame
+    saver = std::make_unique<FrameSaver>(saver_options);
+  }
 
   RunOptions options;
   options.system.use_segmentation = !args.no_segmentation;
@@ -100,6 +113,7 @@ void run(const RunArgs& args) {
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
   options.on_frame = [&](const FrameStats& f, const System& system) {
     if (f.has_pose) live.write({f.timestamp, *system.last_T_world_cam()});
+    if (saver) saver->offer(system.publisher().frame().value);
   };
   // A line rewritten in place on a terminal, a plain line every 10 s in a log.
   options.progress = ProgressOptions{.terminal = isatty(fileno(stderr)) != 0};
@@ -109,6 +123,7 @@ void run(const RunArgs& args) {
                options.system.vocabulary_path.empty() || !options.system.loop_closing || args.localization ? "off" : "on");
   if (args.localization) spdlog::info("localization only in {}: no keyframes, no mapping", args.load_map);
   const RunResult result = run_dataset(settings, *dataset, options);
+  if (saver) saver->finish();
 
   const RunSummary summary = summarize_run(result.frames);
   nlohmann::json stats;
@@ -161,7 +176,14 @@ void run(const RunArgs& args) {
   std::cout << "time per frame [ms] mean " << summary.total_ms.mean << ", median " << summary.total_ms.median
             << ", p95 " << summary.total_ms.p95 << " (ORB extraction " << 100.0 * summary.extraction_share
             << " %; tracking only: median " << summary.tracking_ms.median << ")\n";
-  if (const auto gt_path = find_groundtruth(args); gt_path && !result.trajectory.empty()) {
+  if (saver) {
+    stats["saved_frames"] = {{"dir", fs::absolute(args.save_frames).string()}, {"every", args.save_frames_every},
+                             {"written", saver->written()}, {"skipped", saver->skipped()},
+                             {"failed", saver->failed()}};
+  }
+  const auto gt_path = find_groundtruth(args);
+  if (gt_path) stats["groundtruth"] = fs::absolute(*gt_path).string();
+  if (gt_path && !result.trajectory.empty()) {
     try {
       const EvaluationResult ev = evaluate(read_trajectory(*gt_path), result.trajectory, EvaluationOptions{});
       stats["summary"]["ate_rmse"] = ev.ape_stats.rmse;
@@ -237,6 +259,12 @@ void add_run_command(CLI::App& app) {
                 "localization only: track against the loaded map without changing it (no keyframes, no "
                 "mapping, no loop closing)")
       ->needs(load);
+  cmd->add_option("--save-frames", args->save_frames,
+                  "write every processed frame, annotated (kept features, removed features, mask outlines, "
+                  "tracking state), as DIR/frame_<index>_<timestamp>.png; frames the writer cannot keep up with "
+                  "are skipped and counted, except with --deterministic");
+  cmd->add_option("--save-frames-every", args->save_frames_every, "with --save-frames: every Nth frame only")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->footer(kExitCodes);

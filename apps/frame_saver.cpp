@@ -1,0 +1,84 @@
+#include "frame_saver.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "stillslam/core/error.h"
+#include "stillslam/core/option_check.h"
+
+namespace stillslam::apps {
+
+void FrameSaverOptions::check() const {
+  using namespace option_check;
+  if (dir.empty()) throw Error("--save-frames needs a folder");
+  at_least("--save-frames-every", every, 1);
+  at_least("FrameSaverOptions.queue_frames", static_cast<double>(queue_frames), 1);
+  drawing.check();
+}
+
+FrameSaver::FrameSaver(FrameSaverOptions options) : options_(std::move(options)), queue_(options_.queue_frames) {
+  options_.check();
+  std::error_code ec;
+  std::filesystem::create_directories(options_.dir, ec);
+  if (ec || !std::filesystem::is_directory(options_.dir)) {
+    throw Error("--save-frames " + options_.dir.string() + ": cannot create the folder" +
+                (ec ? " (" + ec.message() + ")" : std::string(" (a file of that name exists)")));
+  }
+  thread_ = std::thread([this] { run(); });
+}
+
+FrameSaver::~FrameSaver() { finish(); }
+
+std::string FrameSaver::file_name(const FrameSnapshot& frame) {
+  char name[96];
+  std::snprintf(name, sizeof(name), "frame_%06zu_%.6f.png", frame.index, frame.timestamp);
+  return name;
+}
+
+void FrameSaver::offer(std::shared_ptr<const FrameSnapshot> frame) {
+  if (!frame) return;
+  const bool keep = offered_ % static_cast<std::size_t>(options_.every) == 0;
+  ++offered_;
+  if (!keep) return;
+  // One producer: only the writer thread shrinks the queue, so a size below
+  // capacity here means push() will not wait.
+  if (!options_.wait_when_full && queue_.size() >= queue_.capacity()) {
+    ++skipped_;
+    return;
+  }
+  queue_.push(std::move(frame));
+}
+
+void FrameSaver::finish() {
+  if (!thread_.joinable()) return;
+  queue_.stop();
+  thread_.join();
+  if (skipped_ > 0) {
+    spdlog::warn("--save-frames: {} frame(s) skipped while the writer was busy (--deterministic saves all)",
+                 skipped_);
+  }
+}
+
+void FrameSaver::run() {
+  while (std::optional<std::shared_ptr<const FrameSnapshot>> frame = queue_.pop()) {
+    const cv::Mat image = draw_frame(**frame, options_.drawing);
+    const std::filesystem::path path = options_.dir / file_name(**frame);
+    bool ok = false;
+    try {
+      ok = !image.empty() && cv::imwrite(path.string(), image);
+    } catch (const cv::Exception& e) {
+      spdlog::warn("--save-frames: {}: {}", path.string(), e.what());
+    }
+    if (ok) {
+      ++written_;
+    } else {
+      if (failed_ == 0) spdlog::warn("--save-frames: cannot write {}; check the folder is writable", path.string());
+      ++failed_;
+    }
+  }
+}
+
+}  // namespace stillslam::apps
