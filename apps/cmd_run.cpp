@@ -127,8 +127,8 @@ void run(const RunArgs& args) {
 
   const RunSummary summary = summarize_run(result.frames);
   nlohmann::json stats;
-  stats["config"] = args.config;
-  stats["input"] = args.input;
+  stats["config"] = fs::absolute(args.config).string();  // absolute: `stillslam report` reads it from anywhere
+  stats["input"] = fs::absolute(args.input).string();
   stats["segmentation"] = options.system.use_segmentation && settings.segmentation.enabled;
   stats["deterministic"] = args.deterministic;
   stats["vocabulary"] = options.system.vocabulary_path.string();
