@@ -110,10 +110,13 @@ void run(const RunArgs& args) {
   options.stop = &signals.stop();
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
+  std::vector<std::size_t> features_removed;  // per processed frame, from its snapshot
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
   options.on_frame = [&](const FrameStats& f, const System& system) {
     if (f.has_pose) live.write({f.timestamp, *system.last_T_world_cam()});
-    if (saver) saver->offer(system.publisher().frame().value);
+    std::shared_ptr<const FrameSnapshot> snapshot = system.publisher().frame().value;
+    features_removed.push_back(snapshot ? snapshot->removed_keypoints.size() : 0);
+    if (saver) saver->offer(std::move(snapshot));
   };
   // A line rewritten in place on a terminal, a plain line every 10 s in a log.
   options.progress = ProgressOptions{.terminal = isatty(fileno(stderr)) != 0};
@@ -167,6 +170,9 @@ void run(const RunArgs& args) {
   if (result.map_file_error) stats["map_file_error"] = *result.map_file_error;
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
+  for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
+    frames[i]["features_removed"] = features_removed[i];  // by the dynamic mask (the snapshot's removed_keypoints)
+  }
   stats["frames"] = std::move(frames);
 
   std::cout << "frames: " << summary.frames << ", tracked: " << summary.tracked << " ("

@@ -189,13 +189,14 @@ std::string report_timing_svg(const ReportRun& run) {
 
 std::string report_features_svg(const ReportRun& run) {
   const std::vector<double> x = frame_indices(run);
-  PlotSeries kept{"kept (after the dynamic filter)", "#2ca02c", x, {}, false};
-  PlotSeries removed{"removed by the dynamic filter", "#d62728", x, {}, false};
+  PlotSeries kept{"kept", "#2ca02c", x, {}, false};
+  PlotSeries removed{"removed by the dynamic mask", "#d62728", x, {}, false};
   for (const nlohmann::json& f : run.stats["frames"]) {
-    const double before = frame_number(f, "features_before_filter");
     const double after = frame_number(f, "features_after_filter");
     kept.y.push_back(after);
-    removed.y.push_back(before - after);
+    // `run` records what the mask removed; older stats only the filter's own count.
+    removed.y.push_back(f.contains("features_removed") ? frame_number(f, "features_removed")
+                                                       : frame_number(f, "features_before_filter") - after);
   }
   PlotOptions options;
   options.title = "features per frame";

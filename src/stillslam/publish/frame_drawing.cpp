@@ -1,5 +1,6 @@
 #include "stillslam/publish/frame_drawing.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <vector>
 
@@ -14,13 +15,30 @@ void draw_mask_outline(cv::Mat& canvas, const cv::Mat1b& mask, const cv::Scalar&
   if (mask.empty() || mask.size() != canvas.size()) return;
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-  cv::drawContours(canvas, contours, -1, color, 2, cv::LINE_8);
+  cv::drawContours(canvas, contours, -1, color, 1, cv::LINE_8);
+}
+
+void draw_instances(cv::Mat& canvas, const std::vector<FrameSnapshot::Instance>& instances,
+                    const FrameDrawingOptions& options) {
+  for (const FrameSnapshot::Instance& instance : instances) {
+    const cv::Scalar& color = instance.dynamic ? options.mask : options.static_instance;
+    if (instance.outline.size() >= 2) {
+      cv::polylines(canvas, std::vector<std::vector<cv::Point>>{instance.outline}, true, color,
+                    instance.dynamic ? 2 : 1, cv::LINE_8);
+    } else {
+      cv::rectangle(canvas, instance.box, color, 1, cv::LINE_8);
+    }
+    char label[96];
+    std::snprintf(label, sizeof(label), "%s %.2f", instance.class_name.c_str(), instance.score);
+    const cv::Point at(std::max(0, instance.box.x), std::max(12, instance.box.y - 3));
+    cv::putText(canvas, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.4, color, 1, cv::LINE_AA);
+  }
 }
 
 void draw_state_line(cv::Mat& canvas, const FrameSnapshot& frame, std::size_t kept, std::size_t tracked) {
   char text[256];
-  std::snprintf(text, sizeof(text), "#%zu %s | kept %zu, tracked %zu | mask %.1f%%", frame.index,
-                frame.state.c_str(), kept, tracked, 100.0 * frame.mask_coverage);
+  std::snprintf(text, sizeof(text), "#%zu %s | kept %zu, tracked %zu, removed %zu | mask %.1f%%", frame.index,
+                frame.state.c_str(), kept, tracked, frame.removed_keypoints.size(), 100.0 * frame.mask_coverage);
   const double scale = canvas.cols >= 640 ? 0.5 : 0.35;
   int baseline = 0;
   const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
@@ -48,8 +66,13 @@ cv::Mat draw_frame(const FrameSnapshot& frame, const FrameDrawingOptions& option
     canvas = frame.image.clone();
   }
   if (canvas.depth() != CV_8U) canvas.convertTo(canvas, CV_8U);
+  // Masks first, features over them, text last.
   draw_mask_outline(canvas, frame.dynamic_mask, options.mask);
+  draw_instances(canvas, frame.instances, options);
   const int r = options.feature_radius;
+  for (const cv::Point2f& p : frame.removed_keypoints) {
+    cv::drawMarker(canvas, p, options.removed, cv::MARKER_CROSS, 2 * r + 1, 1, cv::LINE_8);
+  }
   std::size_t tracked = 0;
   for (std::size_t i = 0; i < frame.keypoints.size(); ++i) {
     const bool is_tracked = i < frame.tracked.size() && frame.tracked[i];

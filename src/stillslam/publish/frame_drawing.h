@@ -1,7 +1,8 @@
 #pragma once
 // Draws what the system saw on one frame onto a copy of its image: kept
 // features (tracked or not), features the dynamic filter removed, the outline
-// of the dynamic mask, and a line of text with the tracking state. For saved
+// of the dynamic mask, each instance's outline with its class and score, and
+// a line of text with the tracking state. For saved
 // frames (`stillslam run --save-frames`) and report strips; a viewer may use
 // it too. Colours are BGR and distinct from each other so a test or a reader
 // can tell the kinds apart.
@@ -15,7 +16,8 @@ struct FrameDrawingOptions {
   cv::Scalar tracked{0, 200, 0};      // kept and matched to a map point: green
   cv::Scalar untracked{0, 215, 255};  // kept, not matched: amber
   cv::Scalar removed{0, 0, 255};      // removed by the dynamic filter: red crosses
-  cv::Scalar mask{255, 0, 255};       // outline of the dynamic mask: magenta
+  cv::Scalar mask{255, 0, 255};       // dynamic mask and dynamic instances: magenta
+  cv::Scalar static_instance{255, 255, 0};  // instances of classes not masked: cyan
   int feature_radius = 3;  // pixels
   bool text = true;        // the state line at the top
   void check() const;
