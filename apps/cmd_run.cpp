@@ -60,6 +60,7 @@ struct RunArgs {
   int new_map_after_lost = -1;
   std::string save_frames;
   int save_frames_every = 1;
+  std::string save_frames_format = "png";
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
@@ -91,6 +92,7 @@ void run(const RunArgs& args) {
     FrameSaverOptions saver_options;
     saver_options.dir = args.save_frames;
     saver_options.every = args.save_frames_every;
+    saver_options.format = args.save_frames_format;
     saver_options.wait_when_full = args.deterministic;  // a deterministic run saves every frame
     saver = std::make_unique<FrameSaver>(saver_options);
   }
@@ -184,8 +186,9 @@ void run(const RunArgs& args) {
             << " %; tracking only: median " << summary.tracking_ms.median << ")\n";
   if (saver) {
     stats["saved_frames"] = {{"dir", fs::absolute(args.save_frames).string()}, {"every", args.save_frames_every},
+                             {"format", args.save_frames_format},
                              {"written", saver->written()}, {"skipped", saver->skipped()},
-                             {"failed", saver->failed()}};
+                             {"failed", saver->failed()}, {"mean_write_ms", saver->mean_write_ms()}};
   }
   const auto gt_path = find_groundtruth(args);
   if (gt_path) stats["groundtruth"] = fs::absolute(*gt_path).string();
@@ -271,6 +274,10 @@ void add_run_command(CLI::App& app) {
                   "are skipped and counted, except with --deterministic");
   cmd->add_option("--save-frames-every", args->save_frames_every, "with --save-frames: every Nth frame only")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--save-frames-format", args->save_frames_format,
+                  "with --save-frames: png (lossless) or jpg (quality 90, much faster to write)")
+      ->check(CLI::IsMember({"png", "jpg"}))
+      ->capture_default_str();
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->footer(kExitCodes);

@@ -3,11 +3,13 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
+#include "stillslam/core/stopwatch.h"
 
 namespace stillslam::apps {
 
@@ -16,6 +18,7 @@ void FrameSaverOptions::check() const {
   if (dir.empty()) throw Error("--save-frames needs a folder");
   at_least("--save-frames-every", every, 1);
   at_least("FrameSaverOptions.queue_frames", static_cast<double>(queue_frames), 1);
+  if (format != "png" && format != "jpg") throw Error("--save-frames-format is " + format + ": use png or jpg");
   drawing.check();
 }
 
@@ -32,9 +35,9 @@ FrameSaver::FrameSaver(FrameSaverOptions options) : options_(std::move(options))
 
 FrameSaver::~FrameSaver() { finish(); }
 
-std::string FrameSaver::file_name(const FrameSnapshot& frame) {
+std::string FrameSaver::file_name(const FrameSnapshot& frame) const {
   char name[96];
-  std::snprintf(name, sizeof(name), "frame_%06zu_%.6f.png", frame.index, frame.timestamp);
+  std::snprintf(name, sizeof(name), "frame_%06zu_%.6f.%s", frame.index, frame.timestamp, options_.format.c_str());
   return name;
 }
 
@@ -63,17 +66,23 @@ void FrameSaver::finish() {
 }
 
 void FrameSaver::run() {
+  // Never leaves the loop early: with wait_when_full the run loop would wait forever.
   while (std::optional<std::shared_ptr<const FrameSnapshot>> frame = queue_.pop()) {
-    const cv::Mat image = draw_frame(**frame, options_.drawing);
+    Stopwatch watch;
     const std::filesystem::path path = options_.dir / file_name(**frame);
     bool ok = false;
     try {
-      ok = !image.empty() && cv::imwrite(path.string(), image);
-    } catch (const cv::Exception& e) {
+      const cv::Mat image = draw_frame(**frame, options_.drawing);
+      // PNG at OpenCV's default compression (1, its fastest).
+      const std::vector<int> params =
+          options_.format == "jpg" ? std::vector<int>{cv::IMWRITE_JPEG_QUALITY, 90} : std::vector<int>{};
+      ok = !image.empty() && cv::imwrite(path.string(), image, params);
+    } catch (const std::exception& e) {
       spdlog::warn("--save-frames: {}: {}", path.string(), e.what());
     }
     if (ok) {
       ++written_;
+      write_ms_ += watch.elapsed_ms();
     } else {
       if (failed_ == 0) spdlog::warn("--save-frames: cannot write {}; check the folder is writable", path.string());
       ++failed_;
