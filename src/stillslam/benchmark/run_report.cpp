@@ -83,7 +83,8 @@ ReportRun load_report_run(const fs::path& dir) {
     throw Error("report: " + trajectory_path.string() + " is missing; is " + dir.string() +
                 " the --output folder of a finished `stillslam run`?");
   }
-  run.trajectory = read_trajectory(trajectory_path);
+  // A run stopped before its first tracked frame leaves an empty trajectory.txt: still a report.
+  if (count_pose_lines(trajectory_path) > 0) run.trajectory = read_trajectory(trajectory_path);
   run.keyframes = count_pose_lines(dir / "keyframes.txt");
   run.label = run_label(dir, run.stats);
   fs::path frames_dir = dir / "frames";

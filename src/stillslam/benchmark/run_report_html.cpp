@@ -24,7 +24,7 @@ pre { background: #f6f6f6; padding: 0.6em; overflow-x: auto; font-size: 0.85em; 
 .swatch { display: inline-block; width: 1em; height: 0.8em; margin-right: 0.3em; }
 )CSS";
 
-std::string fixed(double v, int decimals) {
+std::string fixed_text(double v, int decimals) {
   char buf[48];
   std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   return buf;
@@ -72,7 +72,7 @@ std::string summary_table(const std::vector<ReportRun>& runs) {
     if (r.stats.contains("end")) in_input = r.stats["end"].value("frames_in_input", in_input);
     html += "<tr><td><span class=\"swatch\" style=\"background:" + report_run_color(k) + "\"></span>" +
             html_escape(r.label) + "</td>";
-    html += r.evaluation ? cell("ate-rmse-" + n, fixed(r.evaluation->ape_stats.rmse, 6))
+    html += r.evaluation ? cell("ate-rmse-" + n, fixed_text(r.evaluation->ape_stats.rmse, 6))
                          : cell("ate-rmse-" + n, "n/a (" + html_escape(r.evaluation_error) + ")");
     html += cell("ate-pairs-" + n, r.evaluation ? std::to_string(r.evaluation->pairs) : "0");
     html += cell("frames-" + n, std::to_string(c.processed));
@@ -81,7 +81,7 @@ std::string summary_table(const std::vector<ReportRun>& runs) {
     html += cell("lost-" + n, std::to_string(c.lost));
     html += cell("keyframes-" + n, std::to_string(r.keyframes));
     html += cell("relocalizations-" + n, std::to_string(c.relocalized));
-    html += cell("median-ms-" + n, fixed(median_total_ms(r), 2)) + "</tr>\n";
+    html += cell("median-ms-" + n, fixed_text(median_total_ms(r), 2)) + "</tr>\n";
   }
   return html + "</table>\n";
 }
