@@ -242,6 +242,24 @@ TEST_F(RunReport, MissingStatsIsAnErrorNamingTheFile) {
   EXPECT_FALSE(fs::exists(runs_->dir / "x.html"));
 }
 
+// A run stopped before its first frame (empty trajectory.txt, no frames): a
+// report with zero counts and no ATE, not an error.
+TEST_F(RunReport, AnEmptyRunStillGetsAReport) {
+  const fs::path empty = runs_->dir / "stopped_run";
+  fs::create_directories(empty);
+  std::ofstream(empty / "stats.json") << R"({"frames": [], "end": {"frames_in_input": 12}})";
+  std::ofstream(empty / "trajectory.txt") << "";
+  const fs::path out = runs_->dir / "stopped.html";
+  const test::CommandRun r = run_stillslam("report " + empty.string() + " --gt " +
+                                               (runs_->seq / "groundtruth.txt").string() + " --out " + out.string(),
+                                           true);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string html = read_file_text(out);
+  EXPECT_EQ(element_text(html, "frames-0"), "0");
+  EXPECT_EQ(element_text(html, "frames-in-input-0"), "12");
+  EXPECT_EQ(element_text(html, "ate-rmse-0").rfind("n/a", 0), 0u) << element_text(html, "ate-rmse-0");
+}
+
 TEST(HtmlText, EscapesAndEncodes) {
   EXPECT_EQ(html_escape("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;");
   EXPECT_EQ(base64_encode({}), "");
