@@ -53,14 +53,14 @@ struct RunArgs {
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
   bool skip_bad_frames = false;
+  std::string save_frames;  // --save-frames DIR
+  int save_frames_every = 1;
+  std::string save_frames_format = "png";
   std::string save_map, load_map;
   bool localization = false;
   bool force = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
-  std::string save_frames;
-  int save_frames_every = 1;
-  std::string save_frames_format = "png";
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
