@@ -6,11 +6,11 @@
 namespace stillslam::apps {
 
 void add_eval_command(CLI::App& app);
+void add_report_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_vocab_command(CLI::App& app);
-void add_report_command(CLI::App& app);
 
 }  // namespace stillslam::apps
