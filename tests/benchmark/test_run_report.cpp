@@ -4,6 +4,7 @@
 // eval` and stats.json, the page rendered offline in headless Chromium, and
 // the saved frames' count, size and colours.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -232,7 +233,7 @@ TEST_F(RunReport, SavedFramesShowTheRemovedFeatures) {
   EXPECT_GT(magenta, 100);
 }
 
-TEST_F(RunReport, MissingStatsIsAnErrorNamingTheFile) {
+TEST_F(RunReport, MissingOrMalformedStatsIsAnErrorNamingTheFile) {
   const fs::path empty = runs_->dir / "empty_run";
   fs::create_directories(empty);
   const test::CommandRun r =
@@ -240,6 +241,13 @@ TEST_F(RunReport, MissingStatsIsAnErrorNamingTheFile) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find((empty / "stats.json").string()), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(runs_->dir / "x.html"));
+  // Values of the wrong type: the same kind of error (exit 1), not an internal one.
+  std::ofstream(empty / "stats.json") << R"({"frames": [{"index": "x", "state": 3}], "end": 5})";
+  std::ofstream(empty / "trajectory.txt") << "";
+  const test::CommandRun typed =
+      run_stillslam("report " + empty.string() + " --out " + (runs_->dir / "x.html").string(), true);
+  EXPECT_EQ(WEXITSTATUS(typed.status), 1) << typed.out;
+  EXPECT_NE(typed.out.find((empty / "stats.json").string()), std::string::npos) << typed.out;
 }
 
 // A run stopped before its first frame (empty trajectory.txt, no frames): a

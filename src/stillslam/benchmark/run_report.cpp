@@ -136,7 +136,16 @@ std::optional<double> write_run_report(const RunReportOptions& options) {
     groundtruth_name = gt_path->string();
   }
   evaluate_report_runs(runs, groundtruth);
-  write_text_file(options.out, render_run_report(runs, groundtruth, groundtruth_name, options));
+  std::string html;
+  try {
+    html = render_run_report(runs, groundtruth, groundtruth_name, options);
+  } catch (const nlohmann::json::exception& e) {
+    // A stats.json edited by hand or written by another tool: a value of the wrong type.
+    std::string dirs;
+    for (const ReportRun& r : runs) dirs += (dirs.empty() ? "" : ", ") + (r.dir / "stats.json").string();
+    throw Error("report: unexpected value in " + dirs + " (" + e.what() + "); run again to rewrite it");
+  }
+  write_text_file(options.out, html);
   if (!runs.front().evaluation) return std::nullopt;
   return runs.front().evaluation->ape_stats.rmse;
 }
