@@ -86,7 +86,6 @@ void run(const RunArgs& args) {
   DatasetOptions dataset_options;
   dataset_options.skip_bad_frames = args.skip_bad_frames;
   const auto dataset = open_dataset(args.input, settings, dataset_options);
-  prepare_output_folder(out_dir, previous);
   std::unique_ptr<FrameSaver> saver;
   if (!args.save_frames.empty()) {
     FrameSaverOptions saver_options;
@@ -94,8 +93,10 @@ void run(const RunArgs& args) {
     saver_options.every = args.save_frames_every;
     saver_options.format = args.save_frames_format;
     saver_options.wait_when_full = args.deterministic;  // a deterministic run saves every frame
+    saver_options.replace = args.force;
     saver = std::make_unique<FrameSaver>(saver_options);
   }
+  prepare_output_folder(out_dir, previous);
 
   RunOptions options;
   options.system.use_segmentation = !args.no_segmentation;
@@ -240,7 +241,7 @@ void add_run_command(CLI::App& app) {
       ->required();
   cmd->add_flag("--force", args->force,
                 "remove an earlier run's trajectory*.txt, keyframes.txt and stats.json from the output folder first "
-                "(nothing else in it is touched)");
+                "(and its frame_*.png/jpg from the --save-frames folder; nothing else is touched)");
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");

@@ -22,6 +22,23 @@ void FrameSaverOptions::check() const {
   drawing.check();
 }
 
+namespace {
+
+std::vector<std::filesystem::path> earlier_frames(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && name.rfind("frame_", 0) == 0 && (ext == ".png" || ext == ".jpg")) {
+      files.push_back(e.path());
+    }
+  }
+  return files;
+}
+
+}  // namespace
+
 FrameSaver::FrameSaver(FrameSaverOptions options) : options_(std::move(options)), queue_(options_.queue_frames) {
   options_.check();
   std::error_code ec;
@@ -29,6 +46,17 @@ FrameSaver::FrameSaver(FrameSaverOptions options) : options_(std::move(options))
   if (ec || !std::filesystem::is_directory(options_.dir)) {
     throw Error("--save-frames " + options_.dir.string() + ": cannot create the folder" +
                 (ec ? " (" + ec.message() + ")" : std::string(" (a file of that name exists)")));
+  }
+  const std::vector<std::filesystem::path> earlier = earlier_frames(options_.dir);
+  if (!earlier.empty() && !options_.replace) {
+    throw Error("--save-frames " + options_.dir.string() + " holds " + std::to_string(earlier.size()) +
+                " frames of an earlier run (" + earlier.front().filename().string() +
+                ", ...); choose another folder or pass --force to replace them");
+  }
+  for (const std::filesystem::path& f : earlier) {
+    if (!std::filesystem::remove(f, ec) && ec) {
+      throw Error("--save-frames: cannot remove " + f.string() + " of an earlier run: " + ec.message());
+    }
   }
   thread_ = std::thread([this] { run(); });
 }

@@ -26,6 +26,9 @@ struct FrameSaverOptions {
   std::filesystem::path dir;     // created when missing
   int every = 1;                 // save every Nth processed frame (1: all)
   bool wait_when_full = false;   // never skip a frame (deterministic runs)
+  // Frames of an earlier run in `dir` (frame_*.png / .jpg) are removed; without
+  // it they are an Error, so a report never mixes two runs' frames.
+  bool replace = false;
   std::string format = "png";    // "png" or "jpg" (quality 90)
   std::size_t queue_frames = 8;  // snapshots waiting to be written
   FrameDrawingOptions drawing;
@@ -34,6 +37,7 @@ struct FrameSaverOptions {
 
 class FrameSaver {
  public:
+  // Creates `dir`; Error when it cannot, or when it holds earlier frames and not `replace`.
   explicit FrameSaver(FrameSaverOptions options);
   ~FrameSaver();
   FrameSaver(const FrameSaver&) = delete;

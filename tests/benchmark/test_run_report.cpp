@@ -250,6 +250,19 @@ TEST_F(RunReport, MissingOrMalformedStatsIsAnErrorNamingTheFile) {
   EXPECT_NE(typed.out.find((empty / "stats.json").string()), std::string::npos) << typed.out;
 }
 
+// Frames of an earlier run in the --save-frames folder: refused before the
+// run starts, and left alone, so a report never mixes two runs' frames.
+TEST_F(RunReport, SaveFramesRefusesAFolderWithEarlierFrames) {
+  const test::CommandRun r = run_stillslam("run --config " + (runs_->seq / "settings.yaml").string() + " --input " +
+                                               runs_->seq.string() + " --output " + (runs_->dir / "again").string() +
+                                               " --no-segmentation --save-frames " + runs_->frames.string(),
+                                           true);
+  EXPECT_EQ(WEXITSTATUS(r.status), 1) << r.out;
+  EXPECT_NE(r.out.find("frames of an earlier run"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--force"), std::string::npos) << r.out;
+  EXPECT_EQ(count_files(runs_->frames), static_cast<std::size_t>(kFrames));
+}
+
 // A run stopped before its first frame (empty trajectory.txt, no frames): a
 // report with zero counts and no ATE, not an error.
 TEST_F(RunReport, AnEmptyRunStillGetsAReport) {
