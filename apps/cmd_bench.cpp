@@ -54,6 +54,7 @@ void run_bench(const BenchArgs& args) {
   std::cout << "report:       " << files.report.string() << "\n";
   std::cout << "results:      " << files.results.string() << "\n";
   std::cout << "plots:        " << args.out << "/<sequence>_{trajectories,ape,rpe}.svg\n";
+  if (!files.run_reports.empty()) std::cout << "run reports:  " << args.out << "/<sequence>_seg_{off,on}.html\n";
   std::cout << "trajectories: " << args.out << "/<sequence>/seg_{on,off}/run_<k>/trajectory.txt\n";
   std::size_t failed = 0;
   for (const SequenceResult& r : results) failed += r.error ? 1 : 0;

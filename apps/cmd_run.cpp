@@ -11,6 +11,7 @@
 // --save-map FILE writes every map at the end (also after a signal or an input
 // error); --load-map FILE starts from a saved map (relocalizing first), and
 // with --localization only tracks against it (no keyframes, no mapping).
+// --save-frames DIR writes the annotated frames as PNG (apps/frame_saver.h).
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -18,8 +19,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "commands.h"
+#include "frame_saver.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
 #include "signal_watcher.h"
@@ -50,6 +53,9 @@ struct RunArgs {
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
   bool skip_bad_frames = false;
+  std::string save_frames;  // --save-frames DIR
+  int save_frames_every = 1;
+  std::string save_frames_format = "png";
   std::string save_map, load_map;
   bool localization = false;
   bool force = false;
@@ -80,6 +86,16 @@ void run(const RunArgs& args) {
   DatasetOptions dataset_options;
   dataset_options.skip_bad_frames = args.skip_bad_frames;
   const auto dataset = open_dataset(args.input, settings, dataset_options);
+  std::unique_ptr<FrameSaver> saver;
+  if (!args.save_frames.empty()) {
+    FrameSaverOptions saver_options;
+    saver_options.dir = args.save_frames;
+    saver_options.every = args.save_frames_every;
+    saver_options.format = args.save_frames_format;
+    saver_options.wait_when_full = args.deterministic;  // a deterministic run saves every frame
+    saver_options.replace = args.force;
+    saver = std::make_unique<FrameSaver>(saver_options);
+  }
   prepare_output_folder(out_dir, previous);
 
   RunOptions options;
@@ -97,9 +113,13 @@ void run(const RunArgs& args) {
   options.stop = &signals.stop();
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
+  std::vector<std::size_t> features_removed;  // per processed frame, from its snapshot
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
   options.on_frame = [&](const FrameStats& f, const System& system) {
     if (f.has_pose) live.write({f.timestamp, *system.last_T_world_cam()});
+    std::shared_ptr<const FrameSnapshot> snapshot = system.publisher().frame().value;
+    features_removed.push_back(snapshot ? snapshot->removed_keypoints.size() : 0);
+    if (saver) saver->offer(std::move(snapshot));
   };
   // A line rewritten in place on a terminal, a plain line every 10 s in a log.
   options.progress = ProgressOptions{.terminal = isatty(fileno(stderr)) != 0};
@@ -109,11 +129,12 @@ void run(const RunArgs& args) {
                options.system.vocabulary_path.empty() || !options.system.loop_closing || args.localization ? "off" : "on");
   if (args.localization) spdlog::info("localization only in {}: no keyframes, no mapping", args.load_map);
   const RunResult result = run_dataset(settings, *dataset, options);
+  if (saver) saver->finish();
 
   const RunSummary summary = summarize_run(result.frames);
   nlohmann::json stats;
-  stats["config"] = args.config;
-  stats["input"] = args.input;
+  stats["config"] = fs::absolute(args.config).string();  // absolute: `stillslam report` reads it from anywhere
+  stats["input"] = fs::absolute(args.input).string();
   stats["segmentation"] = options.system.use_segmentation && settings.segmentation.enabled;
   stats["deterministic"] = args.deterministic;
   stats["vocabulary"] = options.system.vocabulary_path.string();
@@ -152,6 +173,9 @@ void run(const RunArgs& args) {
   if (result.map_file_error) stats["map_file_error"] = *result.map_file_error;
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
+  for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
+    frames[i]["features_removed"] = features_removed[i];  // by the dynamic mask (the snapshot's removed_keypoints)
+  }
   stats["frames"] = std::move(frames);
 
   std::cout << "frames: " << summary.frames << ", tracked: " << summary.tracked << " ("
@@ -161,7 +185,15 @@ void run(const RunArgs& args) {
   std::cout << "time per frame [ms] mean " << summary.total_ms.mean << ", median " << summary.total_ms.median
             << ", p95 " << summary.total_ms.p95 << " (ORB extraction " << 100.0 * summary.extraction_share
             << " %; tracking only: median " << summary.tracking_ms.median << ")\n";
-  if (const auto gt_path = find_groundtruth(args); gt_path && !result.trajectory.empty()) {
+  if (saver) {
+    stats["saved_frames"] = {{"dir", fs::absolute(args.save_frames).string()}, {"every", args.save_frames_every},
+                             {"format", args.save_frames_format},
+                             {"written", saver->written()}, {"skipped", saver->skipped()},
+                             {"failed", saver->failed()}, {"mean_write_ms", saver->mean_write_ms()}};
+  }
+  const auto gt_path = find_groundtruth(args);
+  if (gt_path) stats["groundtruth"] = fs::absolute(*gt_path).string();
+  if (gt_path && !result.trajectory.empty()) {
     try {
       const EvaluationResult ev = evaluate(read_trajectory(*gt_path), result.trajectory, EvaluationOptions{});
       stats["summary"]["ate_rmse"] = ev.ape_stats.rmse;
@@ -209,7 +241,7 @@ void add_run_command(CLI::App& app) {
       ->required();
   cmd->add_flag("--force", args->force,
                 "remove an earlier run's trajectory*.txt, keyframes.txt and stats.json from the output folder first "
-                "(nothing else in it is touched)");
+                "(and its frame_*.png/jpg from the --save-frames folder; nothing else is touched)");
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
@@ -237,6 +269,16 @@ void add_run_command(CLI::App& app) {
                 "localization only: track against the loaded map without changing it (no keyframes, no "
                 "mapping, no loop closing)")
       ->needs(load);
+  cmd->add_option("--save-frames", args->save_frames,
+                  "write every processed frame, annotated (kept features, removed features, mask outlines, "
+                  "tracking state), as DIR/frame_<index>_<timestamp>.png; frames the writer cannot keep up with "
+                  "are skipped and counted, except with --deterministic");
+  cmd->add_option("--save-frames-every", args->save_frames_every, "with --save-frames: every Nth frame only")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--save-frames-format", args->save_frames_format,
+                  "with --save-frames: png (lossless) or jpg (quality 90, much faster to write)")
+      ->check(CLI::IsMember({"png", "jpg"}))
+      ->capture_default_str();
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
   cmd->footer(kExitCodes);

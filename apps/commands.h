@@ -6,6 +6,7 @@
 namespace stillslam::apps {
 
 void add_eval_command(CLI::App& app);
+void add_report_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "stillslam 0.1");
   stillslam::apps::add_run_command(app);
   stillslam::apps::add_eval_command(app);
+  stillslam::apps::add_report_command(app);
   stillslam::apps::add_simulate_command(app);
   stillslam::apps::add_segment_command(app);
   stillslam::apps::add_bench_command(app);

@@ -259,6 +259,22 @@ TEST(BenchmarkEndToEnd, WritesReportAndRecordsFailures) {
   }
   EXPECT_TRUE(fs::exists(out.path / name / "seg_on" / "run_1" / "trajectory.txt"));
   EXPECT_TRUE(fs::exists(out.path / name / "seg_off" / "run_1" / "keyframes.txt"));
+
+  // One HTML run report per mode of the good sequence, and the broken one's
+  // off mode; report.md links them; each holds its median run's ATE.
+  EXPECT_EQ(files.run_reports.size(), 3u);
+  for (const char* mode : {"off", "on"}) {
+    const std::string html_name = name + "_seg_" + mode + ".html";
+    EXPECT_NE(md.str().find("(" + html_name + ")"), std::string::npos) << html_name;
+    std::ifstream html_in(out.path / html_name);
+    std::stringstream html;
+    html << html_in.rdbuf();
+    const double ape = std::string(mode) == "on" ? ape_on : ape_off;
+    char expected[64];
+    std::snprintf(expected, sizeof(expected), "id=\"ate-rmse-0\">%.6f<", ape);
+    EXPECT_NE(html.str().find(expected), std::string::npos) << html_name << " lacks " << expected;
+    EXPECT_NE(html.str().find("id=\"ate-rmse-1\""), std::string::npos) << "the other mode is overlaid";
+  }
 }
 
 }  // namespace

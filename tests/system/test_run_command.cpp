@@ -13,6 +13,7 @@
 
 #include "stillslam/io/camera_settings.h"
 #include "stillslam/io/trajectory.h"
+#include "common/small_sequence.h"
 #include "stillslam/sim/sequence_writer.h"
 
 namespace stillslam {
@@ -25,18 +26,7 @@ std::string read_text(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// A small walking_xyz render (400x300, one ray per pixel) in DIR/seq.
-sim::SequenceSummary write_small_sequence(const fs::path& dir, int frames, bool people) {
-  sim::SimulationOptions opts;
-  opts.trajectory = "walking_xyz";
-  opts.frames = frames;
-  opts.width = 400;
-  opts.height = 300;
-  opts.no_people = !people;
-  opts.supersampling = 1;
-  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
-  return sim::write_sequence(dir / "seq", opts);
-}
+using test::write_small_sequence;
 
 std::size_t count_lines(const fs::path& p) {
   std::ifstream in(p);

@@ -88,6 +88,23 @@ TEST(FrameBuilder, DynamicKeypointsAreDroppedBeforeAssociation) {
   EXPECT_EQ(s_masked.keypoints_with_depth, s_masked.keypoints_after);
 }
 
+TEST(FrameBuilder, RemovedFeaturesAreReportedInsideTheMask) {
+  // The viewer shows what the mask removed: corners on the "person",
+  // thinned to about the share of the budget the mask covers.
+  const auto setup = make_setup(40.0);
+  SegmentationWorker worker(std::make_unique<LeftHalfPerson>(), {0}, 0);
+  FrameBuilder masked(setup, SensorType::Rgbd, OrbOptions{}, &worker);
+  FrameBuildStats stats;
+  FrameDynamics dynamics;
+  masked.build(rgbd_input(), 0, &stats, &dynamics);
+  ASSERT_EQ(dynamics.detections.size(), 1u);
+  EXPECT_EQ(dynamics.detections[0].class_name, "person");
+  const int removed = static_cast<int>(dynamics.removed_keypoints.size());
+  EXPECT_GT(removed, 0.3 * OrbOptions{}.n_features);
+  EXPECT_LE(removed, 0.55 * OrbOptions{}.n_features);
+  for (const cv::Point2f& p : dynamics.removed_keypoints) EXPECT_LT(p.x, 321.f);
+}
+
 TEST(FrameBuilder, StereoDepthFromRectifiedPair) {
   const double bf = 50.0;  // 0.1 m baseline at fx 500
   const auto setup = make_setup(bf);

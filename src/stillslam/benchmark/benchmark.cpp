@@ -31,25 +31,36 @@ TimingSummary summarize_positive(const std::vector<FrameStats>& frames, double (
   return summarize_times(std::move(v));
 }
 
-void write_run_files(const fs::path& dir, const RunResult& result, RunRecord& record) {
+// What `stillslam report` reads from a run folder, as `stillslam run` writes it.
+void write_run_files(const fs::path& dir, const RunResult& result, const BenchmarkInput& input,
+                     const std::vector<std::size_t>& features_removed, RunRecord& record) {
   fs::create_directories(dir);
   record.trajectory_file = dir / "trajectory.txt";
   write_trajectory(record.trajectory_file, result.trajectory);
   write_trajectory(dir / "keyframes.txt", result.keyframes);
   nlohmann::json stats;
+  stats["config"] = fs::absolute(input.config).string();
+  stats["input"] = fs::absolute(input.folder).string();
+  if (!input.groundtruth.empty()) stats["groundtruth"] = fs::absolute(input.groundtruth).string();
+  stats["segmentation"] = record.segmentation;
+  stats["end"] = {{"reason", to_string(result.end)}, {"frames_processed", result.frames.size()},
+                  {"frames_in_input", result.frames_in_input}};
   stats["summary"] = to_json(summarize_run(result.frames));
   stats["summary"]["wall_seconds"] = result.wall_seconds;
   if (result.error) stats["summary"]["error"] = *result.error;
   stats["local_mapping"] = to_json(result.mapper);
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
+  for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
+    frames[i]["features_removed"] = features_removed[i];
+  }
   stats["frames"] = std::move(frames);
   write_text_file(dir / "stats.json", json_text(stats, 1) + "\n");  // whole or not at all; an Error names the cause
 }
 
-RunRecord run_once(const Settings& settings, const Dataset& dataset, const Trajectory& groundtruth,
-                   bool segmentation, int run, const BenchmarkOptions& options, const fs::path& run_dir,
-                   bool& segmentation_active) {
+RunRecord run_once(const Settings& settings, const Dataset& dataset, const BenchmarkInput& input,
+                   const Trajectory& groundtruth, bool segmentation, int run, const BenchmarkOptions& options,
+                   const fs::path& run_dir, bool& segmentation_active) {
   RunRecord record;
   record.run = run;
   record.segmentation = segmentation;
@@ -61,8 +72,11 @@ RunRecord run_once(const Settings& settings, const Dataset& dataset, const Traje
   ro.system.trajectory_refinement.enabled = options.refine_trajectory;
   ro.max_frames = options.max_frames;
   ro.realtime = false;
-  ro.on_frame = [&segmentation_active](const FrameStats&, const System& system) {
+  std::vector<std::size_t> features_removed;  // per frame, from the published snapshot
+  ro.on_frame = [&segmentation_active, &features_removed](const FrameStats&, const System& system) {
     segmentation_active = system.segmentation_enabled();
+    const std::shared_ptr<const FrameSnapshot> frame = system.publisher().frame().value;
+    features_removed.push_back(frame ? frame->removed_keypoints.size() : 0);
   };
   RunResult result;
   try {
@@ -86,7 +100,7 @@ RunRecord run_once(const Settings& settings, const Dataset& dataset, const Traje
   record.trajectory = result.trajectory;
   if (!run_dir.empty()) {
     try {
-      write_run_files(run_dir, result, record);
+      write_run_files(run_dir, result, input, features_removed, record);
     } catch (const std::exception& e) {
       spdlog::warn("bench: cannot write the files of run {}: {}", run, e.what());
     }
@@ -199,7 +213,7 @@ SequenceResult benchmark_sequence(const BenchmarkInput& input, const BenchmarkOp
         run_dir = options.output_dir / input.name / ("seg_" + mode_name) / ("run_" + std::to_string(k));
       }
       bool active = false;
-      RunRecord r = run_once(settings, *dataset, out.groundtruth, mode->segmentation, k, options, run_dir, active);
+      RunRecord r = run_once(settings, *dataset, input, out.groundtruth, mode->segmentation, k, options, run_dir, active);
       mode->segmentation_active = mode->segmentation_active || active;
       if (r.error) {
         spdlog::warn("bench {} seg {} run {}/{}: failed: {}", input.name, mode_name, k, runs, *r.error);

@@ -42,8 +42,11 @@ std::string benchmark_markdown(const std::vector<SequenceResult>& results, const
 
 struct ReportFiles {
   std::filesystem::path report, results;
+  std::vector<std::filesystem::path> run_reports;  // <sequence>_seg_{off,on}.html
 };
-// Writes report.md, results.json and the plots into `dir` (created).
+// Writes report.md, results.json and the plots into `dir` (created); with run
+// folders (options.output_dir) also one HTML run report per sequence and
+// mode (run_report.h), linked from report.md.
 ReportFiles write_benchmark_report(const std::filesystem::path& dir, const std::vector<SequenceResult>& results,
                                    const BenchmarkOptions& options);
 

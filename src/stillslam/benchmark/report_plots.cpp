@@ -9,6 +9,7 @@
 #include "stillslam/core/text_file.h"
 #include "stillslam/eval/metrics.h"
 #include "stillslam/eval/svg_plot.h"
+#include "stillslam/benchmark/plot_geometry.h"
 #include "stillslam/benchmark/report.h"
 
 namespace stillslam {
@@ -26,16 +27,6 @@ struct ModeCurve {
   std::vector<double> rpe_t, rpe_err;  // start time since t0, error
 };
 
-// A hole in a stamped sequence (tracking lost): a step over 10x the median
-// step and over 0.5 s.
-double gap_limit(const std::vector<double>& stamps) {
-  if (stamps.size() < 3) return std::numeric_limits<double>::infinity();
-  std::vector<double> steps;
-  for (std::size_t k = 1; k < stamps.size(); ++k) steps.push_back(stamps[k] - stamps[k - 1]);
-  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  return std::max(10.0 * steps[steps.size() / 2], 0.5);
-}
-
 void push(PlotSeries& s, bool gap, double x, double y) {
   if (gap) {
     s.x.push_back(std::numeric_limits<double>::quiet_NaN());
@@ -48,7 +39,7 @@ void push(PlotSeries& s, bool gap, double x, double y) {
 PlotSeries stamped_series(const std::string& label, const std::string& color, const std::vector<double>& t,
                           const std::vector<double>& v, double t0) {
   PlotSeries s{label, color, {}, {}, false};
-  const double limit = gap_limit(t);
+  const double limit = stamp_gap_limit(t);
   for (std::size_t k = 0; k < t.size(); ++k) push(s, k > 0 && t[k] - t[k - 1] > limit, t[k] - t0, v[k]);
   return s;
 }
@@ -79,24 +70,8 @@ std::vector<ModeCurve> mode_curves(const SequenceResult& result) {
   return curves;
 }
 
-// The two world axes along which the ground truth spreads most.
-std::array<int, 2> view_axes(const Trajectory& gt) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const StampedPose& p : gt) mean += p.T_world_cam.translation();
-  mean /= static_cast<double>(std::max<std::size_t>(gt.size(), 1));
-  Eigen::Vector3d var = Eigen::Vector3d::Zero();
-  for (const StampedPose& p : gt) var += (p.T_world_cam.translation() - mean).cwiseAbs2();
-  int dropped = 0;
-  var.minCoeff(&dropped);
-  std::array<int, 2> axes{};
-  for (int a = 0, k = 0; a < 3; ++a) {
-    if (a != dropped) axes[k++] = a;
-  }
-  return axes;
-}
-
 std::string trajectories_svg(const SequenceResult& result, const std::vector<ModeCurve>& curves) {
-  const std::array<int, 2> axes = view_axes(result.groundtruth);
+  const std::array<int, 2> axes = spread_axes(result.groundtruth);
   const std::array<const char*, 3> names{"x [m]", "y [m]", "z [m]"};
   std::vector<PlotSeries> series;
   // Ground truth over the span the runs cover (the whole file may be longer
@@ -121,7 +96,7 @@ std::string trajectories_svg(const SequenceResult& result, const std::vector<Mod
       y.push_back(p.T_world_cam.translation()[axes[1]]);
     }
     PlotSeries s{c.label, c.color, {}, {}, false};
-    const double limit = gap_limit(t);
+    const double limit = stamp_gap_limit(t);
     for (std::size_t k = 0; k < t.size(); ++k) push(s, k > 0 && t[k] - t[k - 1] > limit, x[k], y[k]);
     series.push_back(std::move(s));
   }

@@ -46,11 +46,13 @@ std::vector<int> split_features(int n_features, const ScalePyramid& pyramid) {
 struct LevelResult {
   std::vector<cv::KeyPoint> keypoints;  // level coordinates
   cv::Mat descriptors;
+  std::vector<cv::KeyPoint> masked;     // level coordinates, when asked for
 };
 
 // exclude: empty, or the level-size mask of pixels where no corner may be kept.
-LevelResult extract_level(const cv::Mat& image, const cv::Mat1b& exclude, int target, const OrbOptions& options,
-                          const BriefPattern& pattern) {
+// masked_target > 0: also keep that many of the excluded corners (same quadtree).
+LevelResult extract_level(const cv::Mat& image, const cv::Mat1b& exclude, int target, int masked_target,
+                          const OrbOptions& options, const BriefPattern& pattern) {
   LevelResult out;
   if (target <= 0) return out;
   FastCellOptions fast;
@@ -59,16 +61,22 @@ LevelResult extract_level(const cv::Mat& image, const cv::Mat1b& exclude, int ta
   fast.min_threshold = options.min_th_fast;
   fast.border = kBorder;
   std::vector<cv::KeyPoint> corners = detect_fast_in_cells(image, fast);
-  if (!exclude.empty()) {
-    std::erase_if(corners, [&](const cv::KeyPoint& kp) {
-      const int x = std::clamp(static_cast<int>(kp.pt.x), 0, exclude.cols - 1);
-      const int y = std::clamp(static_cast<int>(kp.pt.y), 0, exclude.rows - 1);
-      return exclude(y, x) != 0;
-    });
-  }
   const cv::Rect2f region(static_cast<float>(kBorder), static_cast<float>(kBorder),
                           static_cast<float>(image.cols - 2 * kBorder),
                           static_cast<float>(image.rows - 2 * kBorder));
+  if (!exclude.empty()) {
+    std::vector<cv::KeyPoint> masked;
+    std::erase_if(corners, [&](const cv::KeyPoint& kp) {
+      const int x = std::clamp(static_cast<int>(kp.pt.x), 0, exclude.cols - 1);
+      const int y = std::clamp(static_cast<int>(kp.pt.y), 0, exclude.rows - 1);
+      const bool inside = exclude(y, x) != 0;
+      if (inside && masked_target > 0) masked.push_back(kp);
+      return inside;
+    });
+    if (!masked.empty()) {
+      for (std::size_t i : distribute_quadtree(masked, region, masked_target)) out.masked.push_back(masked[i]);
+    }
+  }
   const std::vector<std::size_t> kept = distribute_quadtree(corners, region, target);
   out.keypoints.reserve(kept.size());
   for (std::size_t i : kept) out.keypoints.push_back(corners[i]);
@@ -111,8 +119,8 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::Mat>* pyr
   return extract(gray, cv::Mat1b(), pyramid_out);
 }
 
-OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
-                                  std::vector<cv::Mat>* pyramid_out) const {
+OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude, std::vector<cv::Mat>* pyramid_out,
+                                  std::vector<cv::Point2f>* masked_out) const {
   if (gray.empty() || gray.type() != CV_8UC1) {
     throw Error("ORB extraction needs a non-empty 8-bit single-channel image (got type " +
                 std::to_string(gray.type()) + ", " + std::to_string(gray.cols) + "x" +
@@ -126,7 +134,11 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
   // The mask at each level's size: a corner is dropped when its level pixel
   // shows any excluded full-resolution pixel (INTER_AREA averages, > 0 keeps them).
   std::vector<cv::Mat1b> excluded(levels.size());
-  if (!exclude.empty() && cv::countNonZero(exclude) > 0) {
+  const int excluded_pixels = exclude.empty() ? 0 : cv::countNonZero(exclude);
+  // The masked corners reported get the share of each level's budget that the mask covers.
+  const double masked_share =
+      masked_out ? static_cast<double>(excluded_pixels) / static_cast<double>(gray.total()) : 0.0;
+  if (excluded_pixels > 0) {
     excluded[0] = exclude;
     for (std::size_t l = 1; l < levels.size(); ++l) {
       if (levels[l].empty()) continue;
@@ -139,9 +151,11 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
   // does not depend on scheduling.
   cv::parallel_for_(cv::Range(0, pyramid_.n_levels), [&](const cv::Range& range) {
     for (int l = range.start; l < range.end; ++l) {
-      results[static_cast<std::size_t>(l)] =
-          extract_level(levels[static_cast<std::size_t>(l)], excluded[static_cast<std::size_t>(l)],
-                        features_per_level_[static_cast<std::size_t>(l)], options_, pattern_);
+      const int target = features_per_level_[static_cast<std::size_t>(l)];
+      const int masked_target = static_cast<int>(std::lround(target * masked_share));
+      results[static_cast<std::size_t>(l)] = extract_level(levels[static_cast<std::size_t>(l)],
+                                                           excluded[static_cast<std::size_t>(l)], target,
+                                                           masked_target, options_, pattern_);
     }
   });
 
@@ -157,6 +171,9 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
     const LevelMapping mapping(levels[0].size(), levels[static_cast<std::size_t>(l)].size());
     for (const cv::KeyPoint& kp : r.keypoints) {
       features.keypoints.emplace_back(mapping.to_full(kp.pt), kPatchSize * s, kp.angle, kp.response, l);
+    }
+    if (masked_out) {
+      for (const cv::KeyPoint& kp : r.masked) masked_out->push_back(mapping.to_full(kp.pt));
     }
     if (!r.keypoints.empty()) {
       r.descriptors.copyTo(features.descriptors.rowRange(row, row + r.descriptors.rows));

@@ -31,7 +31,11 @@ class OrbExtractor {
   // Keeps no corner on a non-zero pixel of `exclude` (CV_8UC1, the image's
   // size, or empty): the whole feature budget goes to the rest of the image
   // (dynamic objects masked before extraction, as DynaSLAM does).
-  OrbFeatures extract(const cv::Mat& gray, const cv::Mat1b& exclude, std::vector<cv::Mat>* pyramid_out) const;
+  // masked_out (optional) receives, appended in level-0 pixels, the corners
+  // dropped for the mask, thinned by the same quadtree to the share of each
+  // level's budget the mask covers: the features the mask removed (for display).
+  OrbFeatures extract(const cv::Mat& gray, const cv::Mat1b& exclude, std::vector<cv::Mat>* pyramid_out,
+                      std::vector<cv::Point2f>* masked_out = nullptr) const;
 
   const ScalePyramid& pyramid() const { return pyramid_; }
   const OrbOptions& options() const { return options_; }

@@ -29,6 +29,16 @@ struct FrameSnapshot {
   cv::Mat1b dynamic_mask;       // the mask its features were kept out of (empty without segmentation)
   std::vector<cv::Point2f> keypoints;  // the features tracking saw (outside the mask)
   std::vector<bool> tracked;    // per keypoint: matched to a map point and not an outlier
+  std::vector<cv::Point2f> removed_keypoints;  // features dropped because they fell in the dynamic mask
+  struct Instance {
+    std::string class_name;
+    int class_id = -1;
+    float score = 0;
+    cv::Rect box;                    // input-image pixels
+    std::vector<cv::Point> outline;  // largest external contour of the instance mask, input pixels
+    bool dynamic = false;            // its class is in the dynamic set (its pixels were masked)
+  };
+  std::vector<Instance> instances;
   int keypoints_with_depth = 0;
   int detections = 0;           // detections of the segmenter (all classes)
   double mask_coverage = 0;     // fraction of the image in the dynamic mask

@@ -11,6 +11,7 @@
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
+#include "stillslam/system/snapshot_instances.h"
 #include "stillslam/tracking/thread_cpu_stopwatch.h"
 
 namespace stillslam {
@@ -95,11 +96,12 @@ void System::build_pipeline(const Settings& settings) {
 
   // 1. Segmentation (own thread): the colour image in, the dynamic mask out.
   if (options_.use_segmentation && settings.segmentation.enabled) {
+    dynamic_class_ids_ = resolve_class_ids(settings.segmentation.classes);
     std::unique_ptr<Segmenter> segmenter = options_.segmenter_factory
                                                ? options_.segmenter_factory()
                                                : std::make_unique<YoloSegmenter>(settings.segmentation);
     segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
-                                                         resolve_class_ids(settings.segmentation.classes),
+                                                         dynamic_class_ids_,
                                                          settings.segmentation.mask_dilation,
                                                          MaskHoldOptions{.frames = settings.segmentation.hold_frames});
   }
@@ -305,7 +307,8 @@ FrameStats System::process(const SensorFrame& input) {
   FrameStats stats;
   stats.index = input.index;
   stats.timestamp = input.timestamp;
-  Frame frame = builder_->build(input, next_frame_id_++, &stats.build);
+  FrameDynamics dynamics;
+  Frame frame = builder_->build(input, next_frame_id_++, &stats.build, &dynamics);
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
   const TrackingResult result = tracker_->track(frame);
@@ -356,12 +359,12 @@ FrameStats System::process(const SensorFrame& input) {
   stats.total_ms = total.elapsed_ms();
   stats.total_cpu_ms = total_cpu.elapsed_ms();
   Stopwatch publishing;
-  publish(input, frame, stats);
+  publish(input, frame, stats, std::move(dynamics));
   stats.publish_ms = publishing.elapsed_ms();
   return stats;
 }
 
-void System::publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats) {
+void System::publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats, FrameDynamics dynamics) {
   auto f = std::make_shared<FrameSnapshot>();
   f->index = stats.index;
   f->frame_id = frame.id();
@@ -380,6 +383,8 @@ void System::publish(const SensorFrame& input, const Frame& frame, const FrameSt
     f->keypoints.push_back(frame.keypoints_raw()[i].pt);
     f->tracked.push_back(frame.map_point(i) != nullptr && !frame.is_outlier(i));
   }
+  f->removed_keypoints = std::move(dynamics.removed_keypoints);
+  f->instances = snapshot_instances(dynamics.detections, dynamic_class_ids_);
   f->keypoints_with_depth = stats.build.keypoints_with_depth;
   f->detections = stats.build.detections;
   f->mask_coverage = stats.build.mask_coverage;

@@ -183,7 +183,7 @@ class System {
   void detect_and_merge();
   bool merge_into(Map& target, const LoopDetection& detection);
   // Posts the frame snapshot and, when due, the atlas snapshot.
-  void publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats);
+  void publish(const SensorFrame& input, const Frame& frame, const FrameStats& stats, FrameDynamics dynamics);
 
   SystemOptions options_;
   // The stage options of the settings this system was built from.
@@ -192,6 +192,7 @@ class System {
   SensorType sensor_;
   std::shared_ptr<const CameraSetup> setup_;
   std::unique_ptr<SegmentationWorker> segmentation_;
+  std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;
   std::unique_ptr<Atlas> atlas_;
   std::shared_ptr<const Vocabulary> vocabulary_;

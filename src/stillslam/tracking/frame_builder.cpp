@@ -35,11 +35,13 @@ FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType 
   stereo_options_.check();
 }
 
-Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats) const {
+Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats,
+                          FrameDynamics* dynamics) const {
   Stopwatch total;
   FrameBuildStats local;
   FrameBuildStats& st = stats ? *stats : local;
   st = FrameBuildStats{};
+  if (dynamics) *dynamics = FrameDynamics{};
   if (input.gray.empty()) throw Error("frame " + input.name + ": no grey image to extract features from");
   const bool stereo = sensor_ == SensorType::Stereo;
   if (stereo && input.right.empty()) throw Error("frame " + input.name + ": stereo sensor but no right image");
@@ -73,10 +75,12 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     st.mask_coverage = seg.coverage;
     st.held_coverage = seg.held_coverage;
     exclude = std::move(seg.dynamic_mask);
+    if (dynamics) dynamics->detections = std::move(seg.detections);
   }
   Stopwatch extraction;
   ThreadCpuStopwatch extraction_cpu;
-  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr);
+  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr,
+                                       dynamics ? &dynamics->removed_keypoints : nullptr);
   st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
   OrbFeatures right;
   if (stereo) right = right_future.get();
@@ -85,7 +89,20 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
 
   // 3. Dynamic filter before anything else looks at the keypoints (a guard:
   // the extractor already kept none in the mask).
-  if (!exclude.empty()) left = select(left, keypoints_outside_mask(left.keypoints, exclude));
+  if (!exclude.empty()) {
+    const std::vector<std::size_t> keep = keypoints_outside_mask(left.keypoints, exclude);
+    if (dynamics && keep.size() < left.size()) {
+      std::size_t k = 0;
+      for (std::size_t i = 0; i < left.size(); ++i) {
+        if (k < keep.size() && keep[k] == i) {
+          ++k;
+        } else {
+          dynamics->removed_keypoints.push_back(left.keypoints[i].pt);
+        }
+      }
+    }
+    left = select(left, keep);
+  }
   st.keypoints_after = static_cast<int>(left.size());
 
   // 4. Undistortion and depth association.

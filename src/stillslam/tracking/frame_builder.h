@@ -14,6 +14,7 @@
 #include "stillslam/features/stereo_matcher.h"
 #include "stillslam/core/sensor_frame.h"
 #include "stillslam/map/frame.h"
+#include "stillslam/tracking/frame_dynamics.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 
 namespace stillslam {
@@ -41,7 +42,9 @@ class FrameBuilder {
                SegmentationWorker* segmentation, StereoMatchOptions stereo_options = {});
 
   // Throws stillslam::Error when the frame lacks the images the sensor needs.
-  Frame build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats) const;
+  // `dynamics` (optional) receives the detections and the removed features.
+  Frame build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats,
+              FrameDynamics* dynamics = nullptr) const;
 
   bool segmentation_enabled() const { return segmentation_ != nullptr; }
 

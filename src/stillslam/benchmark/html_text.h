@@ -1,0 +1,24 @@
+#pragma once
+// Text helpers for the self-contained HTML run report: escaping, and base64
+// for images inlined as data URIs (the report loads nothing from outside).
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stillslam {
+
+// `text` with & < > " ' replaced by entities (safe in elements and quoted attributes).
+std::string html_escape(std::string_view text);
+
+// RFC 4648 base64 with padding.
+std::string base64_encode(const std::vector<std::uint8_t>& bytes);
+
+// "data:<mime>;base64,..." for an <img src>.
+std::string data_uri(const std::string& mime, const std::vector<std::uint8_t>& bytes);
+
+// An SVG document (as render_line_plot writes) without its XML declaration,
+// ready to sit inline in HTML.
+std::string inline_svg(const std::string& svg);
+
+}  // namespace stillslam
