@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   stillslam::apps::add_segment_command(app);
   stillslam::apps::add_bench_command(app);
   stillslam::apps::add_vocab_command(app);
+  stillslam::apps::add_bag_export_command(app);
+  stillslam::apps::add_bag_write_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -27,6 +27,12 @@ void BagReader::stop_at_damage(const std::string& detail) {
   spdlog::warn("{}; the bag is damaged there: using the {} messages before it", damage_, messages_.size());
 }
 
+std::vector<std::uint8_t> BagReader::read_prefix(std::size_t i, std::size_t n) const {
+  std::vector<std::uint8_t> bytes = read(i);
+  if (bytes.size() > n) bytes.resize(n);
+  return bytes;
+}
+
 std::uint32_t BagReader::add_topic(BagTopic topic) {
   topic.message_count = 0;
   topics_.push_back(std::move(topic));

@@ -37,6 +37,9 @@ class BagReader {
   const std::vector<BagMessageInfo>& messages() const { return messages_; }
   // Message i's serialized bytes (CDR for ROS 2).
   virtual std::vector<std::uint8_t> read(std::size_t i) const = 0;
+  // At most the first `n` bytes of message i (enough for a header stamp,
+  // without reading a whole image where the storage allows).
+  virtual std::vector<std::uint8_t> read_prefix(std::size_t i, std::size_t n) const;
   // Where reading stopped early ("FILE: at byte N: why"), empty for an intact bag.
   const std::string& damage() const { return damage_; }
 

@@ -83,4 +83,21 @@ std::vector<std::uint8_t> SqliteBagReader::read(std::size_t i) const {
   return out;
 }
 
+std::vector<std::uint8_t> SqliteBagReader::read_prefix(std::size_t i, std::size_t n) const {
+  const std::lock_guard lock(mutex_);
+  sqlite3_blob* blob = nullptr;
+  if (sqlite3_blob_open(db_.get(), "main", "messages", "data", row_ids_.at(i), 0, &blob) != SQLITE_OK) {
+    sqlite3_blob_close(blob);
+    throw Error(file_.string() + ": message row " + std::to_string(row_ids_[i]) +
+                " cannot be read: " + sqlite3_errmsg(db_.get()) + " (damaged bag)");
+  }
+  std::vector<std::uint8_t> out(std::min<std::size_t>(n, static_cast<std::size_t>(sqlite3_blob_bytes(blob))));
+  const int rc = sqlite3_blob_read(blob, out.data(), static_cast<int>(out.size()), 0);
+  sqlite3_blob_close(blob);
+  if (rc != SQLITE_OK) {
+    throw Error(file_.string() + ": message row " + std::to_string(row_ids_[i]) + " cannot be read (damaged bag)");
+  }
+  return out;
+}
+
 }  // namespace stillslam

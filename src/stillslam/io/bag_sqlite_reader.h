@@ -19,6 +19,7 @@ class SqliteBagReader : public BagReader {
   ~SqliteBagReader() override;
   std::string storage() const override { return "sqlite3"; }
   std::vector<std::uint8_t> read(std::size_t i) const override;
+  std::vector<std::uint8_t> read_prefix(std::size_t i, std::size_t n) const override;  // incremental blob I/O
 
  private:
   [[noreturn]] void fail(const std::string& what) const;

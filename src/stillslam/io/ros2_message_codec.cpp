@@ -47,6 +47,14 @@ Header decode_header(const Bytes& cdr, const std::string& what) {
   return read_header(r);
 }
 
+std::int64_t decode_stamp_ns(const Bytes& cdr, const std::string& what) {
+  CdrReader r = reader(cdr, what);
+  Header h;
+  h.sec = r.i32();
+  h.nanosec = r.u32();
+  return h.stamp_ns();
+}
+
 Image decode_image(const Bytes& cdr, const std::string& what) {
   CdrReader r = reader(cdr, what);
   Image m;

@@ -20,6 +20,8 @@ Odometry decode_odometry(const Bytes& cdr, const std::string& what);
 TfMessage decode_tf_message(const Bytes& cdr, const std::string& what);
 // Only the header (every stamped message starts with it).
 Header decode_header(const Bytes& cdr, const std::string& what);
+// Only the header's stamp (the first 12 bytes with the encapsulation), in ns.
+std::int64_t decode_stamp_ns(const Bytes& cdr, const std::string& what);
 
 Bytes encode(const Image& m);
 Bytes encode(const CompressedImage& m);
