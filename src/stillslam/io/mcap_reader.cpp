@@ -109,7 +109,7 @@ void McapReader::scan() {
         }
       } else if (opcode == mcap::kSchema || opcode == mcap::kChannel || opcode == mcap::kMessage) {
         // Outside chunks: parse this one record as a one-record buffer.
-        std::string record = head + read_at(content, opcode == mcap::kMessage ? std::min<std::uint64_t>(length, 22) : length);
+        std::string record = head + read_at(content, opcode == mcap::kMessage ? std::min<std::uint64_t>(length, 22 + 16) : length);
         if (opcode == mcap::kMessage) {
           std::memcpy(record.data() + 1, &length, 8);  // the header keeps the full length
         }
@@ -182,6 +182,11 @@ void McapReader::scan_records(const std::string& buffer, std::uint64_t base, std
       loc.chunk = chunk;
       loc.offset = (chunk < 0 ? base : 0) + content + kFixed;
       loc.size = length - kFixed;
+      const std::size_t data_at = content + kFixed;
+      if (data_at < buffer.size()) {
+        std::memcpy(loc.prefix.data(), buffer.data() + data_at,
+                    std::min<std::size_t>({loc.prefix.size(), loc.size, buffer.size() - data_at}));
+      }
       locations_.push_back(loc);
       messages_.push_back({it->second, static_cast<std::int64_t>(log_time)});
       ++topics_[it->second].message_count;
@@ -243,6 +248,13 @@ std::shared_ptr<const std::string> McapReader::chunk_data(std::size_t chunk) con
                       file_.string() + ": chunk at data offset " + std::to_string(c.data_offset)));
   cached_chunk_ = static_cast<std::int64_t>(chunk);
   return cached_;
+}
+
+std::vector<std::uint8_t> McapReader::read_prefix(std::size_t i, std::size_t n) const {
+  const Location& loc = locations_.at(i);
+  const std::size_t kept = std::min<std::size_t>(loc.prefix.size(), loc.size);
+  if (n > kept && loc.size > kept) return BagReader::read_prefix(i, n);
+  return std::vector<std::uint8_t>(loc.prefix.begin(), loc.prefix.begin() + static_cast<long>(std::min(n, kept)));
 }
 
 std::vector<std::uint8_t> McapReader::read(std::size_t i) const {

@@ -5,6 +5,7 @@
 // summary's Statistics, when present, is kept for checking the counts.
 // read(i) reads message i from its chunk (the last decompressed chunk is
 // cached) or from the file.
+#include <array>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -20,6 +21,9 @@ class McapReader : public BagReader {
   explicit McapReader(const std::filesystem::path& mcap);
   std::string storage() const override { return "mcap"; }
   std::vector<std::uint8_t> read(std::size_t i) const override;
+  // The first 16 bytes of every message are kept from the scan (header
+  // stamps without decompressing a chunk again).
+  std::vector<std::uint8_t> read_prefix(std::size_t i, std::size_t n) const override;
   // Per-topic message counts of the summary's Statistics record (absent
   // without a summary).
   const std::optional<std::map<std::string, std::uint64_t>>& summary_counts() const { return summary_counts_; }
@@ -36,6 +40,7 @@ class McapReader : public BagReader {
     std::int64_t chunk = -1;  // -1: a message record outside chunks
     std::uint64_t offset = 0;  // in the chunk's records, or in the file
     std::uint64_t size = 0;
+    std::array<std::uint8_t, 16> prefix{};
   };
   void scan();
   // Records of one buffer (the data section's, or a chunk's); returns false at a Footer / DataEnd.
