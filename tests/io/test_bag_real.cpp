@@ -9,6 +9,7 @@
 
 #include "stillslam/io/bag_metadata.h"
 #include "stillslam/io/bag_reader.h"
+#include "stillslam/io/bag_trajectory.h"
 #include "stillslam/io/mcap_reader.h"
 #include "stillslam/io/ros2_message_codec.h"
 
@@ -87,6 +88,16 @@ TEST(BagReal, McapCountsMatchSummaryAndPosesDecode) {
   EXPECT_EQ(bag.messages().size(), total);
   EXPECT_GT(total, 0u);
   EXPECT_GT(check_poses(bag), 0u);
+  // The odom -> base_link TF and the odometry topic carry the same poses.
+  const Trajectory odom = read_bag_trajectory(bag, {"/odom", {}});
+  const Trajectory tf = read_bag_trajectory(bag, {"/tf", std::pair<std::string, std::string>{"odom", "base_link"}});
+  ASSERT_EQ(odom.size(), 2639u);
+  ASSERT_EQ(tf.size(), odom.size());
+  for (std::size_t i = 0; i < odom.size(); i += 100) {
+    EXPECT_EQ(tf[i].timestamp, odom[i].timestamp);
+    EXPECT_LT((tf[i].T_world_cam.translation() - odom[i].T_world_cam.translation()).norm(), 1e-9);
+  }
+  EXPECT_EQ(read_bag_trajectory(bag, {"/amcl_pose", {}}).size(), 135u);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ StampedPose stamped(const ros2::Header& h, const ros2::Pose& p) {
 std::string pose_topics(const BagReader& bag) {
   std::string out;
   for (const BagTopic& t : bag.topics()) {
-    if (t.type == ros2::kOdometryType || t.type == ros2::kPoseStampedType || t.type == ros2::kTfMessageType) {
+    if (t.type == ros2::kOdometryType || t.type == ros2::kPoseStampedType ||
+        t.type == ros2::kPoseWithCovarianceStampedType || t.type == ros2::kTfMessageType) {
       out += (out.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
     }
   }
@@ -36,9 +37,11 @@ Trajectory read_bag_trajectory(const BagReader& bag, const BagTrajectoryOptions&
   if (!id) throw Error(name + ": topic '" + options.topic + "' is not in the bag; its pose topics: " + pose_topics(bag));
   const std::string& type = bag.topics()[*id].type;
   const bool tf = type == ros2::kTfMessageType;
-  if (type != ros2::kOdometryType && type != ros2::kPoseStampedType && !tf) {
+  const bool stamped_pose = type == ros2::kPoseStampedType || type == ros2::kPoseWithCovarianceStampedType;
+  if (type != ros2::kOdometryType && !stamped_pose && !tf) {
     throw Error(name + ": topic '" + options.topic + "' holds " + type + "; export needs " + ros2::kOdometryType +
-                ", " + ros2::kPoseStampedType + " or " + ros2::kTfMessageType + " (pose topics: " + pose_topics(bag) + ")");
+                ", " + ros2::kPoseStampedType + ", " + ros2::kPoseWithCovarianceStampedType + " or " +
+                ros2::kTfMessageType + " (pose topics: " + pose_topics(bag) + ")");
   }
   Trajectory out;
   std::set<std::string> pairs_seen;
@@ -49,7 +52,7 @@ Trajectory read_bag_trajectory(const BagReader& bag, const BagTrajectoryOptions&
     if (type == ros2::kOdometryType) {
       const ros2::Odometry m = ros2::decode_odometry(bytes, what);
       out.push_back(stamped(m.header, m.pose));
-    } else if (type == ros2::kPoseStampedType) {
+    } else if (stamped_pose) {
       const ros2::PoseStamped m = ros2::decode_pose_stamped(bytes, what);
       out.push_back(stamped(m.header, m.pose));
     } else {

@@ -1,7 +1,7 @@
 #pragma once
 // A trajectory from a bag topic, for `stillslam bag-export` and `eval`:
-// nav_msgs/Odometry and geometry_msgs/PoseStamped give the pose of each
-// message; tf2_msgs/TFMessage gives the transforms of one named frame pair
+// nav_msgs/Odometry, geometry_msgs/PoseStamped and PoseWithCovarianceStamped
+// give the pose of each message; tf2_msgs/TFMessage gives the transforms of one named frame pair
 // (PARENT -> CHILD, the child's pose in the parent; chains of frames are
 // not composed). Stamps are the header stamps, sorted; a repeated stamp
 // keeps the first pose.

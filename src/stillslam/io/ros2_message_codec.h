@@ -35,6 +35,8 @@ inline constexpr const char* kImageType = "sensor_msgs/msg/Image";
 inline constexpr const char* kCompressedImageType = "sensor_msgs/msg/CompressedImage";
 inline constexpr const char* kCameraInfoType = "sensor_msgs/msg/CameraInfo";
 inline constexpr const char* kPoseStampedType = "geometry_msgs/msg/PoseStamped";
+// Header + Pose first, as PoseStamped: decode_pose_stamped reads it (covariance ignored).
+inline constexpr const char* kPoseWithCovarianceStampedType = "geometry_msgs/msg/PoseWithCovarianceStamped";
 inline constexpr const char* kOdometryType = "nav_msgs/msg/Odometry";
 inline constexpr const char* kTfMessageType = "tf2_msgs/msg/TFMessage";
 
