@@ -40,6 +40,22 @@ std::string mcap_decompress(const std::string& compression, const char* data, st
     }
     return std::string(data, size);
   }
+  // A corrupt size must not become a huge allocation: zstd frames state their
+  // content size; lz4 cannot expand more than 255:1.
+  if (compression == "zstd") {
+    const unsigned long long declared = ZSTD_getFrameContentSize(data, size);
+    if (declared == ZSTD_CONTENTSIZE_ERROR) throw Error(what + ": zstd chunk is corrupt (no zstd frame header)");
+    if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != uncompressed_size) {
+      throw Error(what + ": zstd chunk holds " + std::to_string(declared) + " bytes, its header says " +
+                  std::to_string(uncompressed_size));
+    }
+    if (declared == ZSTD_CONTENTSIZE_UNKNOWN && uncompressed_size > (std::size_t{1} << 30)) {
+      throw Error(what + ": chunk claims " + std::to_string(uncompressed_size) + " bytes uncompressed (over 1 GiB)");
+    }
+  } else if (compression == "lz4" && uncompressed_size / 256 > size + 65536) {
+    throw Error(what + ": lz4 chunk of " + std::to_string(size) + " bytes cannot hold the " +
+                std::to_string(uncompressed_size) + " bytes its header says");
+  }
   std::string out(uncompressed_size, '\0');
   if (compression == "zstd") {
     const std::size_t n = ZSTD_decompress(out.data(), out.size(), data, size);
