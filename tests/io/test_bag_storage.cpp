@@ -100,6 +100,38 @@ TEST(BagStorage, EveryFormatRoundTrips) {
   EXPECT_FALSE(McapReader(dir.path() / "nosummary.mcap").summary_counts());
 }
 
+TEST(BagStorage, FolderOfSeveralFilesReadsAsOneBag) {
+  test::TempDir dir;
+  const fs::path folder = dir.path() / "split";
+  fs::create_directories(folder);
+  for (int part = 0; part < 2; ++part) {
+    BagWriterOptions o;
+    o.format = part == 0 ? "db3" : "mcap";
+    auto bag = open_bag_writer(folder / ("split_" + std::to_string(part) + (part == 0 ? ".db3" : ".mcap")), o);
+    // The second file lists the topics in the other order.
+    const auto b = part == 1 ? bag->add_topic("/b", "nav_msgs/msg/Odometry") : 0;
+    const auto a = bag->add_topic("/a", "sensor_msgs/msg/Image");
+    for (int k = 0; k < 3; ++k) bag->write(a, 100 * part + k, payload(0, 3 * part + k));
+    if (part == 1) bag->write(b, 150, payload(1, 0));
+    bag->close();
+  }
+  BagMetadata m;
+  m.storage_identifier = "mixed";
+  m.relative_file_paths = {"split_0.db3", "split_1.mcap"};
+  write_bag_metadata(folder / "metadata.yaml", m);
+  const auto bag = open_bag(folder);
+  ASSERT_EQ(bag->topics().size(), 2u);
+  EXPECT_EQ(bag->topics()[0].name, "/a");
+  EXPECT_EQ(bag->topics()[0].message_count, 6u);
+  EXPECT_EQ(bag->topics()[1].message_count, 1u);
+  ASSERT_EQ(bag->messages().size(), 7u);
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(bag->messages()[i].topic, 0u);
+    EXPECT_EQ(bag->read(i), payload(0, static_cast<int>(i)));
+  }
+  EXPECT_EQ(bag->messages()[6].topic, 1u);
+}
+
 void truncate_file(const fs::path& file, std::uintmax_t size) { fs::resize_file(file, size); }
 
 void corrupt(const fs::path& file, std::uintmax_t at, std::size_t n) {
