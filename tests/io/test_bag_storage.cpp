@@ -100,6 +100,15 @@ TEST(BagStorage, EveryFormatRoundTrips) {
   EXPECT_FALSE(McapReader(dir.path() / "nosummary.mcap").summary_counts());
 }
 
+TEST(BagStorage, Db3PathWithUriCharacters) {
+  test::TempDir dir;
+  BagWriterOptions o;
+  o.format = "db3";
+  const fs::path file = dir.path() / "odd name ?#%20.db3";
+  write_bag(file, o);
+  expect_all_messages(*open_bag(file));
+}
+
 TEST(BagStorage, FolderOfSeveralFilesReadsAsOneBag) {
   test::TempDir dir;
   const fs::path folder = dir.path() / "split";

@@ -16,7 +16,19 @@ void SqliteBagReader::fail(const std::string& what) const {
 SqliteBagReader::SqliteBagReader(const std::filesystem::path& db3) : BagReader(db3) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(db3, ec)) throw Error(db3.string() + ": bag file not found");
-  const std::string uri = "file:" + db3.string() + "?immutable=1";
+  // immutable=1: no locks, no -wal/-shm files next to a bag that may be read-only.
+  std::string uri = "file:";
+  for (const char ch : db3.string()) {
+    if (ch == '%' || ch == '?' || ch == '#') {
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      uri += '%';
+      uri += kHex[(static_cast<unsigned char>(ch) >> 4) & 0xF];
+      uri += kHex[static_cast<unsigned char>(ch) & 0xF];
+    } else {
+      uri += ch;
+    }
+  }
+  uri += "?immutable=1";
   sqlite3* db = nullptr;
   const int open_rc =
       sqlite3_open_v2(uri.c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX, nullptr);
