@@ -11,6 +11,7 @@
 #include "common/run_stillslam.h"
 #include "stillslam/io/bag_folder_writer.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/sim/sequence_writer.h"
 
 namespace stillslam {
 namespace {
@@ -120,6 +121,43 @@ TEST(RunBag, DamagedInTheMiddleRunsTheFramesBeforeAndBadInputIsAClearError) {
   e = run(bag, dir.path / "out_one", " --topics /cam0/image_raw");
   EXPECT_NE(e.status, 0);
   EXPECT_NE(e.out.find("stereo needs two"), std::string::npos) << e.out;
+}
+
+// A synthetic TUM RGB-D sequence written as a bag (PNG colour, compressedDepth
+// PNG in millimetres) runs RGB-D and tracks as the folder does: depth in the bag
+// is quantized to 1 mm (the folder's 0.2 mm), so the ATE is close, not equal.
+TEST(RunBag, RgbdBagFromATumFolder) {
+  REQUIRE_STILLSLAM_BINARY();
+  Scratch dir;
+  sim::SimulationOptions opts;
+  opts.trajectory = "walking_xyz";
+  opts.frames = 30;
+  opts.width = 400;
+  opts.height = 300;
+  opts.no_people = true;
+  opts.supersampling = 1;
+  opts.data_dir = fs::path(STILLSLAM_SOURCE_DIR) / "data";
+  const sim::SequenceSummary seq = sim::write_sequence(dir.path / "seq", opts);
+  BagFolderWriteOptions o;
+  o.bag.compression = "lz4";
+  o.images = "png";
+  const BagFolderWriteResult written = write_folder_as_bag(dir.path / "seq", dir.path / "rgbd_bag", o);
+  EXPECT_EQ(written.layout, "tum");
+  EXPECT_EQ(written.frames, 30u);
+  const auto r = test::run_stillslam("run --config " + seq.settings.string() + " --input " +
+                                         (dir.path / "rgbd_bag").string() +
+                                         " --topics /camera/rgb/image_color,/camera/depth/image --output " +
+                                         (dir.path / "out").string() + " --groundtruth " +
+                                         (dir.path / "seq" / "groundtruth.txt").string() +
+                                         " --no-segmentation --deterministic --vocabulary none",
+                                     true);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("(rgbd)"), std::string::npos) << r.out;
+  const Trajectory t = read_trajectory(dir.path / "out" / "trajectory.txt");
+  EXPECT_EQ(t.size(), 30u);
+  const auto ate = r.out.find("ATE rmse ");
+  ASSERT_NE(ate, std::string::npos) << r.out;
+  EXPECT_LT(std::stod(r.out.substr(ate + 9)), 0.01) << r.out;
 }
 
 }  // namespace
