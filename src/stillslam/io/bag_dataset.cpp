@@ -39,6 +39,11 @@ std::uint32_t BagDataset::require_image_topic(const std::string& name) const {
     throw Error(bag_->file().string() + ": topic '" + name + "' holds " + type + ", not images (" +
                 ros2::kImageType + " or " + ros2::kCompressedImageType + "); the bag has: " + bag_->topic_list());
   }
+  const std::string& serialization = bag_->topics()[*topic].serialization;
+  if (!serialization.empty() && serialization != "cdr") {
+    throw Error(bag_->file().string() + ": topic '" + name + "' is serialized as '" + serialization +
+                "'; only CDR (ROS 2's rmw serialization) is read");
+  }
   if (bag_->topics()[*topic].message_count == 0) {
     throw Error(bag_->file().string() + ": topic '" + name + "' has no messages" +
                 (bag_->damage().empty() ? std::string() : " before the damage (" + bag_->damage() + ")"));
