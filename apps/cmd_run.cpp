@@ -89,6 +89,10 @@ void run(const RunArgs& args) {
   dataset_options.max_dt = args.pair_tolerance;
   if (args.camera_info_from_bag) {
     if (!is_bag_path(args.input)) throw Error("--camera-info-from-bag: " + args.input + " is not a ROS 2 bag");
+    if (args.side_by_side) {
+      throw Error("--camera-info-from-bag does not apply to --side-by-side (a side-by-side topic has no CameraInfo "
+                  "for each half): give stereo settings describing one half");
+    }
     apply_bag_camera_info(settings, *open_bag(args.input), args.topics);
   }
   const auto dataset = open_dataset(args.input, settings, dataset_options);

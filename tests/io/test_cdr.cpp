@@ -10,6 +10,7 @@
 #include "stillslam/io/cdr_reader.h"
 #include "stillslam/io/cdr_writer.h"
 #include "stillslam/io/ros2_message_codec.h"
+#include "stillslam/io/ros2_message_definitions.h"
 
 namespace stillslam {
 namespace {
@@ -142,6 +143,21 @@ TEST(Cdr, ShortOrCorruptPayloadsAreErrorsNamingTheMessage) {
   CdrWriter w;
   w.u32(0xFFFFFFF0u);
   EXPECT_THROW(ros2::decode_tf_message(w.data(), "tf"), Error);
+}
+
+TEST(Ros2Definitions, NestedTypesOnceInDependencyOrder) {
+  const std::string odom = ros2::message_definition(ros2::kOdometryType);
+  EXPECT_EQ(odom.rfind("std_msgs/Header header\nstring child_frame_id\n", 0), 0u) << odom;
+  for (const char* nested : {"MSG: geometry_msgs/PoseWithCovariance\n", "MSG: geometry_msgs/Pose\n",
+                             "MSG: geometry_msgs/Quaternion\n", "MSG: builtin_interfaces/Time\n",
+                             "MSG: geometry_msgs/Vector3\n"}) {
+    const auto at = odom.find(nested);
+    ASSERT_NE(at, std::string::npos) << nested;
+    EXPECT_EQ(odom.find(nested, at + 1), std::string::npos) << nested << " twice";
+  }
+  EXPECT_NE(ros2::message_definition(ros2::kCameraInfoType).find("MSG: sensor_msgs/RegionOfInterest\n"),
+            std::string::npos);
+  EXPECT_TRUE(ros2::message_definition("foo_msgs/msg/Bar").empty());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/io/mcap_compression.h"
 #include "stillslam/io/mcap_records.h"
+#include "stillslam/io/ros2_message_definitions.h"
 
 namespace stillslam {
 namespace {
@@ -52,7 +53,7 @@ void McapWriter::on_topic(std::uint32_t topic, const BagTopic& t) {
   schema.put(id);
   schema.put_string(t.type);
   schema.put_string("ros2msg");
-  schema.put_string("");  // no definition text
+  schema.put_string(ros2::message_definition(t.type));  // empty for other types
   ByteWriter channel;
   channel.put(id);
   channel.put(id);

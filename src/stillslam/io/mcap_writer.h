@@ -4,7 +4,7 @@
 // MessageIndex records, or as plain records; then DataEnd, the optional
 // summary (schemas, channels, Statistics, ChunkIndex records) and the Footer.
 // CRC fields are written as 0 ("not computed", allowed by the spec). The
-// schemas carry the type name only (no message definition text).
+// schemas carry the ros2msg definitions of ros2_message_definitions.h.
 #include <fstream>
 #include <map>
 
