@@ -1,13 +1,26 @@
 #include "stillslam/io/mcap_compression.h"
 
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "stillslam/core/error.h"
 
 namespace stillslam {
+
+std::uint32_t mcap_crc32(const std::string& data) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  std::size_t done = 0;
+  while (done < data.size()) {  // zlib takes uInt lengths
+    const std::size_t n = std::min<std::size_t>(data.size() - done, 1u << 30);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(data.data() + done), static_cast<uInt>(n));
+    done += n;
+  }
+  return static_cast<std::uint32_t>(crc);
+}
 
 bool mcap_compression_known(const std::string& c) { return c.empty() || c == "none" || c == "zstd" || c == "lz4"; }
 

@@ -83,7 +83,7 @@ void McapReader::scan() {
         r.get<std::uint64_t>();  // message end time
         Chunk chunk;
         chunk.uncompressed_size = r.get<std::uint64_t>();
-        r.get<std::uint32_t>();  // uncompressed CRC (not checked: the decompressors check their frames)
+        const auto crc = r.get<std::uint32_t>();  // 0: not computed
         chunk.compression = r.get_string();
         chunk.size = r.get<std::uint64_t>();
         chunk.data_offset = content + (fixed.size() - r.remaining());
@@ -95,6 +95,9 @@ void McapReader::scan() {
         const std::string records = mcap_decompress(chunk.compression, compressed.data(), compressed.size(),
                                                     chunk.uncompressed_size,
                                                     "chunk at byte " + std::to_string(pos));
+        if (crc != 0 && mcap_crc32(records) != crc) {
+          r.fail("chunk records do not match their CRC-32 (corrupt data)");
+        }
         chunks_.push_back(chunk);
         const std::size_t before = messages_.size();
         try {

@@ -1,7 +1,8 @@
 #pragma once
 // MCAP bags (ROS 2 Iron and later; public spec). Opening scans the data
 // section record by record (chunks decompressed: zstd, lz4 or none), so a
-// file without summary or index reads the same as an indexed one; the
+// file without summary or index reads the same as an indexed one; a chunk
+// whose CRC-32 is given and does not match is damage; the
 // summary's Statistics, when present, is kept for checking the counts.
 // read(i) reads message i from its chunk (the last decompressed chunk is
 // cached) or from the file.

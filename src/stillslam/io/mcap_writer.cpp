@@ -98,7 +98,7 @@ void McapWriter::flush_chunk() {
   c.put(chunk_start_);
   c.put(chunk_end_);
   c.put(static_cast<std::uint64_t>(chunk_.size()));
-  c.put(static_cast<std::uint32_t>(0));  // CRC not computed
+  c.put(mcap_crc32(chunk_));
   c.put_string(compression);
   c.put(static_cast<std::uint64_t>(compressed.size()));
   c.put_bytes(compressed.data(), compressed.size());

@@ -3,7 +3,8 @@
 // the data section, messages in chunks (zstd / lz4 / none) followed by their
 // MessageIndex records, or as plain records; then DataEnd, the optional
 // summary (schemas, channels, Statistics, ChunkIndex records) and the Footer.
-// CRC fields are written as 0 ("not computed", allowed by the spec). The
+// Chunks carry the CRC-32 of their records; the data-section and summary
+// CRCs are written as 0 ("not computed", allowed by the spec). The
 // schemas carry the ros2msg definitions of ros2_message_definitions.h.
 #include <fstream>
 #include <map>
