@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <tuple>
 
 #include "common/synthetic_camera.h"
 #include "fuzz/fuzz_support.h"

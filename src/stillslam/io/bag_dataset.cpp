@@ -72,6 +72,22 @@ BagDataset::BagDataset(const std::filesystem::path& path, const CameraSettings& 
   }
   std::vector<std::uint32_t> ids;
   for (const std::string& t : topics_) ids.push_back(require_image_topic(t));
+  // An encoding not supported fails here, before the run, rather than at the first frame.
+  for (const std::uint32_t id : ids) {
+    const auto first = std::find_if(bag_->messages().begin(), bag_->messages().end(),
+                                    [&](const BagMessageInfo& m) { return m.topic == id; });
+    const BagTopic& topic = bag_->topics()[id];
+    std::optional<std::string> unsupported;
+    try {
+      const auto bytes = bag_->read(static_cast<std::size_t>(first - bag_->messages().begin()));
+      unsupported = topic.type == ros2::kImageType
+                        ? ros2::unsupported(ros2::decode_image(bytes, topic.name), topic.name)
+                        : ros2::unsupported(ros2::decode_compressed_image(bytes, topic.name), topic.name);
+    } catch (const Error&) {
+      // A message that does not decode is load()'s to report (or skip); only the encoding is checked here.
+    }
+    if (unsupported) throw Error(bag_name + ": " + *unsupported + ". The bag has: " + bag_->topic_list());
+  }
 
   // Header stamps per topic, sorted; duplicates dropped.
   std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> stamped(ids.size());

@@ -30,23 +30,43 @@ cv::Mat decode_png_or_jpeg(const std::uint8_t* data, std::size_t n, int flags, c
   return image;
 }
 
+// The OpenCV type of a raw encoding, and the colour conversion to BGR (-1: none); type -1: not supported.
+std::pair<int, int> raw_type(const std::string& e) {
+  if (e == "mono8" || e == "8UC1") return {CV_8UC1, -1};
+  if (e == "bgr8" || e == "8UC3") return {CV_8UC3, -1};
+  if (e == "rgb8") return {CV_8UC3, cv::COLOR_RGB2BGR};
+  if (e == "bgra8" || e == "8UC4") return {CV_8UC4, cv::COLOR_BGRA2BGR};
+  if (e == "rgba8") return {CV_8UC4, cv::COLOR_RGBA2BGR};
+  if (e == "mono16" || e == "16UC1") return {CV_16UC1, -1};
+  if (e == "32FC1") return {CV_32FC1, -1};
+  return {-1, -1};
+}
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
 }  // namespace
 
+std::optional<std::string> unsupported(const Image& m, const std::string& topic) {
+  if (raw_type(m.encoding).first >= 0) return std::nullopt;
+  return where(topic) + ": image encoding '" + m.encoding + "' is not supported (supported: " + kSupportedRaw +
+         "); convert the topic, e.g. with image_proc, or record a supported encoding";
+}
+
+std::optional<std::string> unsupported(const CompressedImage& m, const std::string& topic) {
+  const std::string& f = m.format;
+  const bool depth = f.find("compressedDepth") != std::string::npos;
+  const bool ok = depth ? f.find("rvl") == std::string::npos && f.find("RVL") == std::string::npos &&
+                              (starts_with(f, "16UC1") || starts_with(f, "mono16") || starts_with(f, "32FC1"))
+                        : f.find("jpeg") != std::string::npos || f.find("jpg") != std::string::npos ||
+                              f.find("png") != std::string::npos;
+  if (ok) return std::nullopt;
+  return where(topic) + ": compressed image format '" + f + "' is not supported (supported: " + kSupportedCompressed + ")";
+}
+
 cv::Mat image_to_mat(const Image& m, const std::string& topic) {
+  if (const auto why = unsupported(m, topic)) throw Error(*why);
   const std::string& e = m.encoding;
-  int type = -1;
-  int conversion = -1;
-  if (e == "mono8" || e == "8UC1") type = CV_8UC1;
-  else if (e == "bgr8" || e == "8UC3") type = CV_8UC3;
-  else if (e == "rgb8") type = CV_8UC3, conversion = cv::COLOR_RGB2BGR;
-  else if (e == "bgra8" || e == "8UC4") type = CV_8UC4, conversion = cv::COLOR_BGRA2BGR;
-  else if (e == "rgba8") type = CV_8UC4, conversion = cv::COLOR_RGBA2BGR;
-  else if (e == "mono16" || e == "16UC1") type = CV_16UC1;
-  else if (e == "32FC1") type = CV_32FC1;
-  if (type < 0) {
-    throw Error(where(topic) + ": image encoding '" + e + "' is not supported (supported: " + kSupportedRaw +
-                "); convert the topic, e.g. with image_proc, or record a supported encoding");
-  }
+  const auto [type, conversion] = raw_type(e);
   const std::size_t row_bytes = static_cast<std::size_t>(m.width) * CV_ELEM_SIZE(type);
   if (m.width == 0 || m.height == 0 || m.step < row_bytes ||
       m.data.size() < static_cast<std::size_t>(m.step) * (m.height - 1) + row_bytes) {
@@ -73,12 +93,9 @@ cv::Mat image_to_mat(const Image& m, const std::string& topic) {
 }
 
 cv::Mat compressed_image_to_mat(const CompressedImage& m, const std::string& topic) {
+  if (const auto why = unsupported(m, topic)) throw Error(*why);
   const std::string& f = m.format;
   if (f.find("compressedDepth") != std::string::npos) {
-    if (f.find("rvl") != std::string::npos || f.find("RVL") != std::string::npos) {
-      throw Error(where(topic) + ": compressed image format '" + f + "' (RVL) is not supported (supported: " +
-                  kSupportedCompressed + ")");
-    }
     if (m.data.size() <= kCompressedDepthHeader) {
       throw Error(where(topic) + ": compressedDepth image of " + std::to_string(m.data.size()) +
                   " bytes is shorter than its 12-byte header");
@@ -86,25 +103,18 @@ cv::Mat compressed_image_to_mat(const CompressedImage& m, const std::string& top
     const cv::Mat png = decode_png_or_jpeg(m.data.data() + kCompressedDepthHeader, m.data.size() - kCompressedDepthHeader,
                                            cv::IMREAD_UNCHANGED, topic, f);
     if (png.type() != CV_16UC1) throw Error(where(topic) + ": compressedDepth PNG is not 16-bit single channel");
-    if (f.rfind("16UC1", 0) == 0 || f.rfind("mono16", 0) == 0) return png;
-    if (f.rfind("32FC1", 0) == 0) {
-      float quant[2];
-      std::memcpy(quant, m.data.data() + 4, sizeof(quant));
-      cv::Mat depth(png.size(), CV_32FC1, cv::Scalar(0));
-      for (int y = 0; y < png.rows; ++y) {
-        for (int x = 0; x < png.cols; ++x) {
-          const auto v = png.at<std::uint16_t>(y, x);
-          if (v != 0) depth.at<float>(y, x) = quant[0] / (static_cast<float>(v) - quant[1]);
-        }
+    if (!starts_with(f, "32FC1")) return png;  // 16UC1: millimetres
+    // 32FC1: quantized inverse depth, depth = a / (v - b); 0 = no measurement.
+    float quant[2];
+    std::memcpy(quant, m.data.data() + 4, sizeof(quant));
+    cv::Mat depth(png.size(), CV_32FC1, cv::Scalar(0));
+    for (int y = 0; y < png.rows; ++y) {
+      for (int x = 0; x < png.cols; ++x) {
+        const auto v = png.at<std::uint16_t>(y, x);
+        if (v != 0) depth.at<float>(y, x) = quant[0] / (static_cast<float>(v) - quant[1]);
       }
-      return depth;
     }
-    throw Error(where(topic) + ": compressed image format '" + f + "' is not supported (supported: " +
-                kSupportedCompressed + ")");
-  }
-  if (f.find("jpeg") == std::string::npos && f.find("jpg") == std::string::npos && f.find("png") == std::string::npos) {
-    throw Error(where(topic) + ": compressed image format '" + f + "' is not supported (supported: " +
-                kSupportedCompressed + ")");
+    return depth;
   }
   cv::Mat image = decode_png_or_jpeg(m.data.data(), m.data.size(), cv::IMREAD_UNCHANGED, topic, f);
   if (image.depth() != CV_8U) {

@@ -7,6 +7,7 @@
 // quantized inverse depth of "32FC1; compressedDepth png") skips its 12-byte
 // header. Anything else is an Error naming the topic, the encoding and the
 // encodings supported.
+#include <optional>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -16,6 +17,10 @@
 namespace stillslam::ros2 {
 
 cv::Mat image_to_mat(const Image& image, const std::string& topic);
+// Why image_to_mat / compressed_image_to_mat would refuse the encoding /
+// format (naming topic, encoding and the supported ones), or nothing.
+std::optional<std::string> unsupported(const Image& image, const std::string& topic);
+std::optional<std::string> unsupported(const CompressedImage& image, const std::string& topic);
 cv::Mat compressed_image_to_mat(const CompressedImage& image, const std::string& topic);
 
 // 8UC1 -> mono8, 8UC3 -> bgr8, 16UC1 -> 16UC1, 32FC1 -> 32FC1; step = width * pixel size.
