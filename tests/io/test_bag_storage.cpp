@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "common/log_capture.h"
 #include "io/temp_dir.h"
 #include "stillslam/core/error.h"
 #include "stillslam/io/bag_metadata.h"
@@ -98,6 +99,20 @@ TEST(BagStorage, EveryFormatRoundTrips) {
   EXPECT_EQ(with_summary.summary_counts()->at("/a"), static_cast<std::uint64_t>(kMessages));
   EXPECT_GT(with_summary.chunk_count(), 3u);
   EXPECT_FALSE(McapReader(dir.path() / "nosummary.mcap").summary_counts());
+}
+
+TEST(BagStorage, CountsBelowMetadataAreAWarning) {
+  test::TempDir dir;
+  BagWriterOptions o;
+  o.format = "db3";
+  write_bag(dir.path() / "bag", o);
+  BagMetadata m = read_bag_metadata(dir.path() / "bag" / "metadata.yaml");
+  m.topics[1].message_count = 25;  // as if the recording had more than the file kept
+  write_bag_metadata(dir.path() / "bag" / "metadata.yaml", m);
+  test::LogCapture log;
+  const auto bag = open_bag(dir.path() / "bag");
+  EXPECT_EQ(bag->topics()[1].message_count, 20u);
+  EXPECT_NE(log.text().find("lists 25 messages on /b, the bag holds 20"), std::string::npos) << log.text();
 }
 
 TEST(BagStorage, Db3PathWithUriCharacters) {

@@ -70,8 +70,21 @@ std::unique_ptr<BagReader> open_bag(const std::filesystem::path& path) {
   const BagMetadata metadata = read_bag_metadata(path / "metadata.yaml");
   std::vector<std::unique_ptr<BagReader>> files;
   for (const std::string& f : metadata.relative_file_paths) files.push_back(open_file(path / f));
-  if (files.size() == 1) return std::move(files.front());
-  return std::make_unique<BagFileSet>(path, std::move(files));
+  std::unique_ptr<BagReader> bag =
+      files.size() == 1 ? std::move(files.front()) : std::make_unique<BagFileSet>(path, std::move(files));
+  warn_on_count_mismatch(*bag, metadata.topics, (path / "metadata.yaml").string());
+  return bag;
+}
+
+void warn_on_count_mismatch(const BagReader& bag, const std::vector<BagTopic>& expected, const std::string& source) {
+  for (const BagTopic& e : expected) {
+    const auto t = bag.find_topic(e.name);
+    const std::size_t got = t ? bag.topics()[*t].message_count : 0;
+    if (got != e.message_count) {
+      spdlog::warn("{} lists {} messages on {}, the bag holds {} (an interrupted recording or a damaged file?)",
+                   source, e.message_count, e.name, got);
+    }
+  }
 }
 
 }  // namespace stillslam

@@ -64,6 +64,9 @@ class BagReader {
 // in the order metadata.yaml lists the files). Error naming the path when it
 // is not a bag.
 std::unique_ptr<BagReader> open_bag(const std::filesystem::path& path);
+// A warning per topic whose message count differs from what `source`
+// (metadata.yaml, the MCAP summary) lists.
+void warn_on_count_mismatch(const BagReader& bag, const std::vector<BagTopic>& expected, const std::string& source);
 // Whether `path` looks like a bag (for open_dataset's layout detection).
 bool is_bag_path(const std::filesystem::path& path);
 

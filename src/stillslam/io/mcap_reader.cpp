@@ -141,6 +141,16 @@ void McapReader::scan() {
       summary_counts_.reset();  // the messages were read; a bad summary only loses the statistics
     }
   }
+  if (summary_counts_) {
+    std::vector<BagTopic> expected;
+    for (const auto& [name, n] : *summary_counts_) {
+      BagTopic t;
+      t.name = name;
+      t.message_count = n;
+      expected.push_back(t);
+    }
+    warn_on_count_mismatch(*this, expected, file_.string() + " (summary)");
+  }
 }
 
 // Message records append a location (offset relative to `buffer` for chunks,
