@@ -11,6 +11,7 @@ void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_vocab_command(CLI::App& app);
+void add_bag_info_command(CLI::App& app);
 void add_bag_export_command(CLI::App& app);
 void add_bag_write_command(CLI::App& app);
 

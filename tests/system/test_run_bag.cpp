@@ -123,6 +123,26 @@ TEST(RunBag, DamagedInTheMiddleRunsTheFramesBeforeAndBadInputIsAClearError) {
   EXPECT_NE(e.out.find("stereo needs two"), std::string::npos) << e.out;
 }
 
+TEST(BagCommands, InfoAndExportOnTheRealMcap) {
+  REQUIRE_STILLSLAM_BINARY();
+  const fs::path mcap = fs::path(STILLSLAM_SHARED_DIR) / "data" / "trajectories" / "nav2_turtlebot.mcap";
+  if (!fs::exists(mcap)) GTEST_SKIP() << "real bag not found at " << mcap << " (../shared next to the repo)";
+  Scratch dir;
+  const auto info = test::run_stillslam("bag-info " + mcap.string(), false);
+  ASSERT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("/odom  nav_msgs/msg/Odometry  2639 messages"), std::string::npos) << info.out;
+  const auto tf = test::run_stillslam("bag-export " + mcap.string() + " --topic /tf --frames odom,base_link --out " +
+                                          (dir.path / "tf.txt").string(),
+                                      true);
+  ASSERT_EQ(tf.status, 0) << tf.out;
+  EXPECT_EQ(read_trajectory(dir.path / "tf.txt").size(), 2639u);
+  const auto no_frames = test::run_stillslam("bag-export " + mcap.string() + " --topic /tf --out " +
+                                                 (dir.path / "x.txt").string(),
+                                             true);
+  EXPECT_NE(no_frames.status, 0);
+  EXPECT_NE(no_frames.out.find("map,odom"), std::string::npos) << no_frames.out;
+}
+
 // A synthetic TUM RGB-D sequence written as a bag (PNG colour, compressedDepth
 // PNG in millimetres) runs RGB-D and tracks as the folder does: depth in the bag
 // is quantized to 1 mm (the folder's 0.2 mm), so the ATE is close, not equal.
