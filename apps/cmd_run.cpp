@@ -1,4 +1,4 @@
-// `stillslam run`: SLAM over a dataset folder (TUM RGB-D, EuRoC, KITTI layout).
+// `stillslam run`: SLAM over a dataset folder (TUM RGB-D, EuRoC, KITTI layout) or a ROS 2 bag (--topics).
 // Writes DIR/trajectory_live.txt while running (whole lines only, so it reads
 // back after a crash or kill), and at the end DIR/trajectory.txt (final
 // estimate, every tracked frame), DIR/keyframes.txt and DIR/stats.json, each
@@ -216,7 +216,7 @@ void run(const RunArgs& args) {
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "run SLAM on a dataset folder and write the trajectory and stats");
+  CLI::App* cmd = app.add_subcommand("run", "run SLAM on a dataset folder or ROS 2 bag and write the trajectory and stats");
   cmd->add_option("--config", args->config, "settings YAML (ORB-SLAM3 style)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input,
                   "dataset folder (TUM RGB-D, EuRoC or KITTI layout) or ROS 2 bag (folder with metadata.yaml, or a "
