@@ -87,8 +87,11 @@ void run(const RunArgs& args) {
   dataset_options.topics = args.topics;
   dataset_options.side_by_side = args.side_by_side;
   dataset_options.max_dt = args.pair_tolerance;
+  if ((!args.topics.empty() || args.side_by_side || args.camera_info_from_bag) && !is_bag_path(args.input)) {
+    throw Error("--topics, --side-by-side and --camera-info-from-bag apply to ROS 2 bags, and " + args.input +
+                " is not one (a folder with metadata.yaml, or a .db3 / .mcap file)");
+  }
   if (args.camera_info_from_bag) {
-    if (!is_bag_path(args.input)) throw Error("--camera-info-from-bag: " + args.input + " is not a ROS 2 bag");
     if (args.side_by_side) {
       throw Error("--camera-info-from-bag does not apply to --side-by-side (a side-by-side topic has no CameraInfo "
                   "for each half): give stereo settings describing one half");
