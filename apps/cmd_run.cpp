@@ -1,4 +1,4 @@
-// `stillslam run`: SLAM over a dataset folder (TUM RGB-D, EuRoC, KITTI layout).
+// `stillslam run`: SLAM over a dataset folder (TUM RGB-D, EuRoC, KITTI layout) or a ROS 2 bag (--topics).
 // Writes DIR/trajectory_live.txt while running (whole lines only, so it reads
 // back after a crash or kill), and at the end DIR/trajectory.txt (final
 // estimate, every tracked frame), DIR/keyframes.txt and DIR/stats.json, each
@@ -29,6 +29,8 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/eval/evaluate.h"
+#include "stillslam/io/bag_camera_info.h"
+#include "stillslam/io/bag_reader.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
@@ -61,6 +63,9 @@ struct RunArgs {
   bool force = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
+  std::vector<std::string> topics;  // ROS 2 bag input
+  double pair_tolerance = 0.02;
+  bool side_by_side = false, camera_info_from_bag = false;
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
@@ -81,10 +86,24 @@ void run(const RunArgs& args) {
                 "); choose another folder or pass --force to replace them");
   }
   if (!args.save_map.empty()) check_map_path(args.save_map, out_dir);
-  const Settings settings = load_settings(args.config);
+  Settings settings = load_settings(args.config);
   set_opencv_threads(settings.segmentation.threads);
   DatasetOptions dataset_options;
   dataset_options.skip_bad_frames = args.skip_bad_frames;
+  dataset_options.topics = args.topics;
+  dataset_options.side_by_side = args.side_by_side;
+  dataset_options.max_dt = args.pair_tolerance;
+  if ((!args.topics.empty() || args.side_by_side || args.camera_info_from_bag) && !is_bag_path(args.input)) {
+    throw Error("--topics, --side-by-side and --camera-info-from-bag apply to ROS 2 bags, and " + args.input +
+                " is not one (a folder with metadata.yaml, or a .db3 / .mcap file)");
+  }
+  if (args.camera_info_from_bag) {
+    if (args.side_by_side) {
+      throw Error("--camera-info-from-bag does not apply to --side-by-side (a side-by-side topic has no CameraInfo "
+                  "for each half): give stereo settings describing one half");
+    }
+    apply_bag_camera_info(settings, *open_bag(args.input), args.topics);
+  }
   const auto dataset = open_dataset(args.input, settings, dataset_options);
   std::unique_ptr<FrameSaver> saver;
   if (!args.save_frames.empty()) {
@@ -232,9 +251,26 @@ void run(const RunArgs& args) {
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "run SLAM on a dataset folder and write the trajectory and stats");
+  CLI::App* cmd = app.add_subcommand("run", "run SLAM on a dataset folder or ROS 2 bag and write the trajectory and stats");
   cmd->add_option("--config", args->config, "settings YAML (ORB-SLAM3 style)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--input", args->input, "dataset folder (TUM RGB-D, EuRoC or KITTI layout)")->required();
+  cmd->add_option("--input", args->input,
+                  "dataset folder (TUM RGB-D, EuRoC or KITTI layout) or ROS 2 bag (folder with metadata.yaml, or a "
+                  ".db3 / .mcap file)")
+      ->required();
+  cmd->add_option("--topics", args->topics,
+                  "ROS 2 bag input: image topics LEFT,RIGHT (stereo) or RGB,DEPTH (RGB-D), or one side-by-side topic")
+      ->delimiter(',');
+  cmd->add_option("--pair-tolerance", args->pair_tolerance,
+                  "seconds within which two images pair up (bag topics by header stamp, TUM rgb/depth, EuRoC "
+                  "cam0/cam1; default 0.02)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--side-by-side", args->side_by_side,
+                "ROS 2 bag input: the one --topics topic holds left|right stereo images side by side (ZED); each "
+                "image is split into two halves");
+  cmd->add_flag("--camera-info-from-bag", args->camera_info_from_bag,
+                "ROS 2 bag input: take the camera calibration (K, D, size; stereo baseline and rotation from R and P) "
+                "from the sensor_msgs/CameraInfo next to each image topic (/ns/image_raw -> /ns/camera_info) instead "
+                "of the settings");
   cmd->add_option("--output", args->output,
                   "output folder; one that holds an earlier run's trajectory*.txt, keyframes.txt or stats.json is "
                   "refused unless --force is given")

@@ -12,6 +12,9 @@ void add_simulate_command(CLI::App& app);
 void add_segment_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_vocab_command(CLI::App& app);
+void add_bag_info_command(CLI::App& app);
+void add_bag_export_command(CLI::App& app);
+void add_bag_write_command(CLI::App& app);
 // apps/ros2/ (the stillslam_ros2 target)
 void add_ros2_command(CLI::App& app);
 void add_ros2_replay_command(CLI::App& app);

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   stillslam::apps::add_segment_command(app);
   stillslam::apps::add_bench_command(app);
   stillslam::apps::add_vocab_command(app);
+  stillslam::apps::add_bag_info_command(app);
+  stillslam::apps::add_bag_export_command(app);
+  stillslam::apps::add_bag_write_command(app);
   stillslam::apps::add_ros2_command(app);
   stillslam::apps::add_ros2_replay_command(app);
   try {

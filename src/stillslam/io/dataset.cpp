@@ -1,6 +1,8 @@
 #include "stillslam/io/dataset.h"
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/bag_dataset.h"
+#include "stillslam/io/bag_reader.h"
 #include "stillslam/io/euroc_dataset.h"
 #include "stillslam/io/kitti_dataset.h"
 #include "stillslam/io/tum_dataset.h"
@@ -36,6 +38,7 @@ std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const C
                                       const DatasetOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  if (is_bag_path(path)) return std::make_unique<BagDataset>(path, settings, options);
   // An association file given directly: a TUM sequence in its folder.
   if (fs::is_regular_file(path, ec)) {
     DatasetOptions with_file = options;
@@ -67,7 +70,7 @@ std::unique_ptr<Dataset> open_dataset(const std::filesystem::path& path, const C
   throw Error(path.string() +
               ": no known dataset layout found. Looked for: TUM RGB-D (rgb.txt + depth.txt, or "
               "associations.txt / associate.txt), EuRoC (mav0/cam0/data.csv or cam0/data.csv), "
-              "KITTI odometry (times.txt + image_0/)");
+              "KITTI odometry (times.txt + image_0/), ROS 2 bag (metadata.yaml, or a .db3 / .mcap file)");
 }
 
 }  // namespace stillslam

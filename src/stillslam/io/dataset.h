@@ -1,5 +1,6 @@
 #pragma once
-// Random-access readers for image datasets (TUM RGB-D, EuRoC, KITTI odometry).
+// Random-access readers for image datasets (TUM RGB-D, EuRoC, KITTI odometry,
+// ROS 2 bags: a bag folder or a bare .db3 / .mcap file).
 // open_dataset() detects the layout from the folder contents (or takes a TUM
 // association file as the path); a folder holding both a TUM and an EuRoC
 // layout is read as EuRoC stereo when the settings describe a stereo pair,
@@ -20,6 +21,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -29,9 +31,13 @@
 namespace stillslam {
 
 struct DatasetOptions {
-  double max_dt = 0.02;  // TUM rgb/depth association tolerance, seconds
+  double max_dt = 0.02;  // pairing tolerance, seconds: TUM rgb/depth, EuRoC cam0/cam1, bag topics
   std::optional<std::filesystem::path> association_file;  // TUM: use this instead of rgb.txt/depth.txt
   bool skip_bad_frames = false;
+  // ROS 2 bags (bag_dataset.h): the image topics, LEFT,RIGHT (stereo) or
+  // RGB,DEPTH (RGB-D), or one topic holding left|right side by side.
+  std::vector<std::string> topics;
+  bool side_by_side = false;
 };
 
 // Random access, read-only: concurrent load() calls on one dataset are safe.
