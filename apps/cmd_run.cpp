@@ -22,6 +22,7 @@
 #include "commands.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
+#include "run_viewer.h"
 #include "signal_watcher.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
@@ -55,6 +56,7 @@ struct RunArgs {
   bool force = false;
   std::size_t max_frames = 0;
   int new_map_after_lost = -1;
+  RunViewerArgs viewer;
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
@@ -95,6 +97,7 @@ void run(const RunArgs& args) {
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
+  const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, options);
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
@@ -239,6 +242,7 @@ void add_run_command(CLI::App& app) {
       ->needs(load);
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
+  add_viewer_options(*cmd, args->viewer);
   cmd->footer(kExitCodes);
   cmd->callback([args] { run(*args); });
 }

@@ -1,0 +1,44 @@
+#include "run_viewer.h"
+
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+namespace stillslam::apps {
+
+void add_viewer_options(CLI::App& cmd, RunViewerArgs& args) {
+  args.viewer = cmd.add_option("--viewer", args.port,
+                               "serve a live web viewer while the run lasts, on 127.0.0.1:PORT (default: Viewer.port, "
+                               "8080; 0: any free port); its address is printed on stderr")
+                    ->expected(0, 1);
+  cmd.add_option("--viewer-host", args.host,
+                 "address the viewer listens on (default: Viewer.host, 127.0.0.1, this machine only); another "
+                 "address lets anyone who reaches it watch and pause the run")
+      ->needs(args.viewer);
+}
+
+std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options) {
+  if (args.viewer == nullptr || args.viewer->count() == 0) return nullptr;
+  ViewerOptions viewer_options = settings.viewer;
+  if (!args.port.empty()) viewer_options.port = args.port.front();
+  if (!args.host.empty()) viewer_options.host = args.host;
+  try {
+    viewer_options.check();
+  } catch (const Error& e) {
+    throw Error(std::string("--viewer / --viewer-host: ") + e.what());
+  }
+  if (!viewer::is_loopback_host(viewer_options.host)) {
+    spdlog::warn("viewer: listening on {}, not only on this machine: anyone who reaches it can watch the camera "
+                 "and pause the run (no authentication)", viewer_options.host);
+  }
+  auto out = std::make_unique<RunViewer>();
+  out->server = std::make_unique<viewer::ViewerServer>(viewer_options, &out->pause);
+  std::cerr << "viewer: " << out->server->url() << std::endl;
+  viewer::ViewerServer* server = out->server.get();
+  options.pause = &out->pause;
+  options.on_start = [server](const System& system) { server->attach(&system.publisher()); };
+  options.on_end = [server] { server->attach(nullptr); };
+  return out;
+}
+
+}  // namespace stillslam::apps

@@ -1,0 +1,161 @@
+#include "viewer/viewer_feed.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "viewer/base64.h"
+
+namespace stillslam::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::shared_ptr<const std::string> event(const char* name, const nlohmann::json& data) {
+  return std::make_shared<const std::string>(std::string("event: ") + name + "\ndata: " + data.dump() + "\n\n");
+}
+
+Clock::duration period(double rate_hz) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
+}
+
+}  // namespace
+
+ViewerFeed::ViewerFeed(const ViewerOptions& options, const PauseGate* pause)
+    : options_(options), pause_(pause), thread_([this] { run(); }) {}
+
+ViewerFeed::~ViewerFeed() {
+  stop_ = true;
+  thread_.join();
+}
+
+void ViewerFeed::attach(const Publisher* publisher) {
+  std::lock_guard lock(source_mutex_);
+  publisher_ = publisher;
+}
+
+ViewerFeed::Newest ViewerFeed::read_newest(std::chrono::milliseconds wait) {
+  std::unique_lock lock(source_mutex_);
+  if (publisher_ != nullptr) {
+    // The wait holds the lock: attach(nullptr) returns within `wait` and the
+    // publisher is not read after that.
+    const Publisher::FrameRead f = publisher_->wait_frame(newest_.frame_version, wait);
+    const Publisher::AtlasRead a = publisher_->atlas();
+    if (f.value) newest_.frame = f.value, newest_.frame_version = f.version;
+    if (a.value) newest_.atlas = a.value, newest_.atlas_version = a.version;
+  } else {
+    lock.unlock();
+    std::this_thread::sleep_for(wait);
+    lock.lock();
+  }
+  if (newest_.frame) measure_rate(newest_.frame->frame_id);
+  return newest_;
+}
+
+void ViewerFeed::measure_rate(std::uint64_t frame_id) {
+  const Clock::time_point now = Clock::now();
+  rate_samples_.emplace_back(now, frame_id);
+  while (rate_samples_.size() > 2 && now - rate_samples_.front().first > std::chrono::seconds(2)) {
+    rate_samples_.pop_front();
+  }
+  const double seconds = std::chrono::duration<double>(now - rate_samples_.front().first).count();
+  if (seconds > 0.2) {
+    fps_ = static_cast<double>(frame_id - rate_samples_.front().second) / seconds;
+  }
+}
+
+RunStatus ViewerFeed::status() const {
+  RunStatus s;
+  s.fps = fps_;
+  s.paused = pause_ != nullptr && pause_->paused();
+  s.running = publisher_ != nullptr;
+  return s;
+}
+
+nlohmann::json ViewerFeed::state() const {
+  std::lock_guard lock(source_mutex_);
+  Newest n = newest_;
+  if (publisher_ != nullptr) {
+    // Newer than what the thread read last, when no page is connected.
+    const Publisher::FrameRead f = publisher_->frame();
+    const Publisher::AtlasRead a = publisher_->atlas();
+    if (f.value) n.frame = f.value;
+    if (a.value) n.atlas = a.value;
+  }
+  return state_json(n.frame.get(), n.atlas.get(), status());
+}
+
+std::vector<std::uint8_t> ViewerFeed::jpeg() const {
+  std::shared_ptr<const FrameSnapshot> frame;
+  {
+    std::lock_guard lock(source_mutex_);
+    frame = publisher_ != nullptr ? publisher_->frame().value : newest_.frame;
+  }
+  std::vector<std::uint8_t> bytes;
+  if (frame && !frame->image.empty()) {
+    cv::imencode(".jpg", frame->image, bytes, {cv::IMWRITE_JPEG_QUALITY, options_.jpeg_quality});
+  }
+  return bytes;
+}
+
+nlohmann::json ViewerFeed::atlas() const {
+  std::shared_ptr<const AtlasSnapshot> atlas;
+  {
+    std::lock_guard lock(source_mutex_);
+    atlas = publisher_ != nullptr ? publisher_->atlas().value : newest_.atlas;
+  }
+  return atlas ? atlas_json(*atlas) : nlohmann::json();
+}
+
+std::string ViewerFeed::encode_frame(const FrameSnapshot& frame) const {
+  nlohmann::json data = overlay_json(frame);
+  if (!frame.image.empty()) {
+    std::vector<std::uint8_t> bytes;
+    cv::imencode(".jpg", frame.image, bytes, {cv::IMWRITE_JPEG_QUALITY, options_.jpeg_quality});
+    data["image"] = "data:image/jpeg;base64," + base64(bytes);
+  }
+  return *event("frame", data);
+}
+
+void ViewerFeed::run() {
+  const Clock::duration frame_period = period(options_.image_rate);
+  const Clock::duration map_period = period(options_.map_rate);
+  Clock::time_point next_frame{}, next_map{};
+  std::uint64_t sent_frame_version = 0, sent_atlas_version = 0;
+  RunStatus sent_status;
+  ViewerUpdate update;
+  while (!stop_) {
+    const Newest n = read_newest(std::chrono::milliseconds(50));
+    if (clients_ <= 0) continue;
+    RunStatus s;
+    {
+      std::lock_guard lock(source_mutex_);
+      s = status();
+    }
+    const Clock::time_point now = Clock::now();
+    bool changed = false;
+    if (n.frame && n.frame_version != sent_frame_version && now >= next_frame) {
+      update.frame = std::make_shared<const std::string>(encode_frame(*n.frame));
+      ++update.frame_seq;
+      sent_frame_version = n.frame_version;
+      next_frame = now + frame_period;
+      changed = true;
+    }
+    if (n.atlas && n.atlas_version != sent_atlas_version && now >= next_map) {
+      update.map = event("map", atlas_json(*n.atlas));
+      ++update.map_seq;
+      sent_atlas_version = n.atlas_version;
+      next_map = now + map_period;
+      changed = true;
+    }
+    // The counters follow the frame shown and the pause / end of the run.
+    if (changed || s.paused != sent_status.paused || s.running != sent_status.running || !update.state) {
+      update.state = event("state", state_json(n.frame.get(), n.atlas.get(), s));
+      ++update.state_seq;
+      sent_status = s;
+      changed = true;
+    }
+    if (changed) updates_.publish(std::make_shared<const ViewerUpdate>(update));
+  }
+}
+
+}  // namespace stillslam::viewer
