@@ -3,6 +3,9 @@
 #include <spdlog/spdlog.h>
 
 #include <iostream>
+#include <stdexcept>
+
+#include "stillslam/core/error.h"
 
 namespace stillslam::apps {
 
@@ -20,7 +23,18 @@ void add_viewer_options(CLI::App& cmd, RunViewerArgs& args) {
 std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options) {
   if (args.viewer == nullptr || args.viewer->count() == 0) return nullptr;
   ViewerOptions viewer_options = settings.viewer;
-  if (!args.port.empty()) viewer_options.port = args.port.front();
+  if (!args.port.empty() && !args.port.front().empty()) {
+    const std::string& text = args.port.front();
+    std::size_t used = 0;
+    try {
+      viewer_options.port = std::stoi(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != text.size()) {
+      throw Error("--viewer " + text + ": the port must be a number in [0, 65535] (0: any free port)");
+    }
+  }
   if (!args.host.empty()) viewer_options.host = args.host;
   try {
     viewer_options.check();

@@ -17,7 +17,9 @@ namespace stillslam::apps {
 
 struct RunViewerArgs {
   CLI::Option* viewer = nullptr;  // given: serve the viewer
-  std::vector<int> port;          // empty: Viewer.port
+  // The PORT given, as text: CLI11 hands an int option given without a value
+  // over as 0, which is a port here. Empty: Viewer.port.
+  std::vector<std::string> port;
   std::string host;               // empty: Viewer.host
 };
 void add_viewer_options(CLI::App& cmd, RunViewerArgs& args);

@@ -38,6 +38,7 @@ struct Variant {
   std::vector<double> frame_ms;  // all repeats
   double wall_seconds = 0;
   std::size_t bytes_received = 0;
+  std::vector<double> encode_ms;  // the feed's mean per update, per run
 };
 
 double median(std::vector<double> v) {
@@ -72,7 +73,7 @@ void run_once(const Args& a, const Settings& settings, const Dataset& dataset, b
     options.on_end = [&] { server->attach(nullptr); };
     client = std::make_unique<httplib::Client>("127.0.0.1", server->port());
     page = std::thread([&] {
-      client->Get("/api/events", [&](const char* data, std::size_t size) {
+      client->Get("/api/events", [&](const char*, std::size_t size) {
         out.bytes_received += size;
         return !done.load();
       });
@@ -81,6 +82,11 @@ void run_once(const Args& a, const Settings& settings, const Dataset& dataset, b
   const RunResult result = run_dataset(settings, dataset, options);
   done = true;
   if (page.joinable()) page.join();
+  if (client) {
+    if (auto state = client->Get("/api/state")) {
+      out.encode_ms.push_back(nlohmann::json::parse(state->body).value("viewer_encode_ms", 0.0));
+    }
+  }
   for (const FrameStats& f : result.frames) out.frame_ms.push_back(f.total_ms + f.publish_ms);
   out.wall_seconds += result.wall_seconds;
 }
@@ -113,12 +119,13 @@ int main(int argc, char** argv) {
         {"without_viewer", {{"median_ms", median(without.frame_ms)}, {"mean_ms", mean(without.frame_ms)},
                             {"wall_seconds", without.wall_seconds}}},
         {"with_viewer", {{"median_ms", median(with.frame_ms)}, {"mean_ms", mean(with.frame_ms)},
-                         {"wall_seconds", with.wall_seconds}, {"bytes_streamed", with.bytes_received}}},
+                         {"wall_seconds", with.wall_seconds}, {"bytes_streamed", with.bytes_received},
+                         {"viewer_encode_ms_per_update", mean(with.encode_ms)}}},
         {"median_ratio", ratio}};
     std::cout << "per frame [ms]  without viewer: median " << median(without.frame_ms) << ", mean "
               << mean(without.frame_ms) << "  with a connected page: median " << median(with.frame_ms) << ", mean "
               << mean(with.frame_ms) << "  ratio of medians " << ratio << "  (" << with.bytes_received / 1e6
-              << " MB streamed)\n";
+              << " MB streamed; the viewer thread's encoding: " << mean(with.encode_ms) << " ms per update)\n";
     if (!a.json.empty()) std::ofstream(a.json) << j.dump(2) << "\n";
   } catch (const Error& e) {
     std::cerr << "bench_viewer: " << e.what() << "\n";

@@ -59,6 +59,7 @@ nlohmann::json map_json(const MapSnapshot& map) {
 nlohmann::json state_json(const FrameSnapshot* frame, const AtlasSnapshot* atlas, const RunStatus& status) {
   nlohmann::json s;
   s["fps"] = rounded(status.fps, 1);
+  s["viewer_encode_ms"] = rounded(status.encode_ms, 2);
   s["paused"] = status.paused;
   s["running"] = status.running;
   if (frame) {

@@ -10,6 +10,7 @@ namespace stillslam::viewer {
 
 struct RunStatus {
   double fps = 0;       // frames processed per second of wall time, recently
+  double encode_ms = 0;  // the viewer's own work (JPEG + JSON) per update it encoded, mean so far
   bool paused = false;  // the run loop waits at the pause gate
   bool running = true;  // false once the run has ended
 };

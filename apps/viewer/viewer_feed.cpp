@@ -1,6 +1,12 @@
 #include "viewer/viewer_feed.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <opencv2/imgcodecs.hpp>
+
+#include "stillslam/core/stopwatch.h"
 
 #include "viewer/base64.h"
 
@@ -66,6 +72,7 @@ void ViewerFeed::measure_rate(std::uint64_t frame_id) {
 RunStatus ViewerFeed::status() const {
   RunStatus s;
   s.fps = fps_;
+  s.encode_ms = frames_encoded_ > 0 ? encode_ms_total_ / static_cast<double>(frames_encoded_) : 0;
   s.paused = pause_ != nullptr && pause_->paused();
   s.running = publisher_ != nullptr;
   return s;
@@ -117,6 +124,10 @@ std::string ViewerFeed::encode_frame(const FrameSnapshot& frame) const {
 }
 
 void ViewerFeed::run() {
+  // This thread's work waits for tracking's on a busy machine: ten nice
+  // levels below the process (a per-thread setting on Linux, not process-wide).
+  const int nice_now = ::getpriority(PRIO_PROCESS, 0);
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), std::min(19, nice_now + 10));
   const Clock::duration frame_period = period(options_.image_rate);
   const Clock::duration map_period = period(options_.map_rate);
   Clock::time_point next_frame{}, next_map{};
@@ -132,20 +143,28 @@ void ViewerFeed::run() {
       s = status();
     }
     const Clock::time_point now = Clock::now();
+    const Stopwatch encoding;
+    bool encoded = false;
     bool changed = false;
     if (n.frame && n.frame_version != sent_frame_version && now >= next_frame) {
       update.frame = std::make_shared<const std::string>(encode_frame(*n.frame));
       ++update.frame_seq;
       sent_frame_version = n.frame_version;
       next_frame = now + frame_period;
-      changed = true;
+      changed = encoded = true;
     }
     if (n.atlas && n.atlas_version != sent_atlas_version && now >= next_map) {
       update.map = event("map", atlas_json(*n.atlas));
       ++update.map_seq;
       sent_atlas_version = n.atlas_version;
       next_map = now + map_period;
-      changed = true;
+      changed = encoded = true;
+    }
+    if (encoded) {
+      std::lock_guard lock(source_mutex_);
+      encode_ms_total_ += encoding.elapsed_ms();
+      ++frames_encoded_;
+      s.encode_ms = encode_ms_total_ / static_cast<double>(frames_encoded_);
     }
     // The counters follow the frame shown and the pause / end of the run.
     if (changed || s.paused != sent_status.paused || s.running != sent_status.running || !update.state) {

@@ -78,6 +78,8 @@ class ViewerFeed {
   Newest newest_;
   std::deque<std::pair<std::chrono::steady_clock::time_point, std::uint64_t>> rate_samples_;  // (time, frame id)
   double fps_ = 0;
+  double encode_ms_total_ = 0;  // frame and map events encoded so far
+  std::uint64_t frames_encoded_ = 0;
 
   std::thread thread_;  // last: starts after the members above exist
 };
