@@ -175,6 +175,14 @@ TEST(ViewerPage, ChromiumShowsTheCountsTheSystemReported) {
   EXPECT_EQ((*frame)["features_after_filter"], state["features_kept"]);
   EXPECT_EQ((*frame)["detections"], state["detections"]);
   EXPECT_EQ((*frame)["state"], state["state"]);
+
+  // A PORT that is not a number is refused, naming it.
+  RunningCommand bad(std::string(STILLSLAM_BINARY) + " run --config " + seq.settings.string() + " --input " +
+                     (dir / "seq").string() + " --output " + (dir / "out_bad").string() +
+                     " --no-segmentation --vocabulary none --viewer 80a");
+  EXPECT_NE(bad.finish(), 0);
+  EXPECT_NE(bad.output().find("--viewer 80a: the port must be a number in [0, 65535]"), std::string::npos)
+      << bad.output();
   fs::remove_all(dir);
 }
 
