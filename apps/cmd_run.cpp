@@ -97,7 +97,7 @@ void run(const RunArgs& args) {
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
-  const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, options);
+  const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, options, find_groundtruth(args));
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();

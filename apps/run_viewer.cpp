@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "stillslam/core/error.h"
+#include "stillslam/io/trajectory.h"
 
 namespace stillslam::apps {
 
@@ -20,7 +21,8 @@ void add_viewer_options(CLI::App& cmd, RunViewerArgs& args) {
       ->needs(args.viewer);
 }
 
-std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options) {
+std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options,
+                                            const std::optional<std::filesystem::path>& groundtruth) {
   if (args.viewer == nullptr || args.viewer->count() == 0) return nullptr;
   ViewerOptions viewer_options = settings.viewer;
   if (!args.port.empty() && !args.port.front().empty()) {
@@ -47,6 +49,13 @@ std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Set
   }
   auto out = std::make_unique<RunViewer>();
   out->server = std::make_unique<viewer::ViewerServer>(viewer_options, &out->pause);
+  if (groundtruth) {
+    try {
+      out->server->set_groundtruth(read_trajectory(*groundtruth));
+    } catch (const Error& e) {
+      spdlog::warn("viewer: no ground truth drawn: {}", e.what());
+    }
+  }
   std::cerr << "viewer: " << out->server->url() << std::endl;
   viewer::ViewerServer* server = out->server.get();
   options.pause = &out->pause;

@@ -4,7 +4,9 @@
 // pause gate).
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,8 @@ struct RunViewer {
 
 // Null without --viewer. Otherwise listens (or throws stillslam::Error),
 // prints the address on stderr and sets options' pause gate and hooks.
-std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options);
+// `groundtruth` (optional): drawn in the active map; unreadable: a warning.
+std::unique_ptr<RunViewer> start_run_viewer(const RunViewerArgs& args, const Settings& settings, RunOptions& options,
+                                            const std::optional<std::filesystem::path>& groundtruth);
 
 }  // namespace stillslam::apps

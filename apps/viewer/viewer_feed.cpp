@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/imgcodecs.hpp>
 
 #include "stillslam/core/stopwatch.h"
@@ -39,6 +40,11 @@ void ViewerFeed::attach(const Publisher* publisher) {
   publisher_ = publisher;
 }
 
+void ViewerFeed::set_groundtruth(const Trajectory& groundtruth) {
+  std::lock_guard lock(source_mutex_);
+  groundtruth_.emplace(groundtruth);
+}
+
 ViewerFeed::Newest ViewerFeed::read_newest(std::chrono::milliseconds wait) {
   std::unique_lock lock(source_mutex_);
   if (publisher_ != nullptr) {
@@ -46,6 +52,9 @@ ViewerFeed::Newest ViewerFeed::read_newest(std::chrono::milliseconds wait) {
     // publisher is not read after that.
     const Publisher::FrameRead f = publisher_->wait_frame(newest_.frame_version, wait);
     const Publisher::AtlasRead a = publisher_->atlas();
+    if (f.value && f.version != newest_.frame_version && groundtruth_ && f.value->has_pose) {
+      groundtruth_->add(f.value->timestamp, f.value->T_world_cam.translation(), f.value->map_id);
+    }
     if (f.value) newest_.frame = f.value, newest_.frame_version = f.version;
     if (a.value) newest_.atlas = a.value, newest_.atlas_version = a.version;
   } else {
@@ -123,6 +132,19 @@ std::string ViewerFeed::encode_frame(const FrameSnapshot& frame) const {
   return *event("frame", data);
 }
 
+nlohmann::json ViewerFeed::encode_atlas(const AtlasSnapshot& atlas) const {
+  nlohmann::json data = atlas_json(atlas);
+  std::lock_guard lock(source_mutex_);
+  if (groundtruth_) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const Eigen::Vector3d& c : groundtruth_->aligned(atlas.active_map_id, 3000)) {
+      for (int i = 0; i < 3; ++i) points.push_back(std::round(c[i] * 1000.0) / 1000.0);
+    }
+    data["groundtruth"] = {{"map", atlas.active_map_id}, {"points", std::move(points)}};
+  }
+  return data;
+}
+
 void ViewerFeed::run() {
   // This thread's work waits for tracking's on a busy machine: ten nice
   // levels below the process (a per-thread setting on Linux, not process-wide).
@@ -154,7 +176,7 @@ void ViewerFeed::run() {
       changed = encoded = true;
     }
     if (n.atlas && n.atlas_version != sent_atlas_version && now >= next_map) {
-      update.map = event("map", atlas_json(*n.atlas));
+      update.map = event("map", encode_atlas(*n.atlas));
       ++update.map_seq;
       sent_atlas_version = n.atlas_version;
       next_map = now + map_period;

@@ -11,6 +11,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "stillslam/publish/publisher.h"
 #include "stillslam/settings/viewer_options.h"
 #include "stillslam/system/pause_gate.h"
+#include "viewer/groundtruth_overlay.h"
 #include "viewer/snapshot_json.h"
 
 namespace stillslam::viewer {
@@ -41,6 +43,8 @@ class ViewerFeed {
   // Starts reading `publisher` (null: stops reading it; returns once the
   // thread has let go of it). The last snapshots read stay available.
   void attach(const Publisher* publisher);
+  // Ground truth to draw, aligned with the active map's trajectory.
+  void set_groundtruth(const Trajectory& groundtruth);
 
   const LatestValue<ViewerUpdate>& updates() const { return updates_; }
   // Page connections: the thread encodes only while there is one.
@@ -66,6 +70,7 @@ class ViewerFeed {
   RunStatus status() const;
   void measure_rate(std::uint64_t frame_id);
   std::string encode_frame(const FrameSnapshot& frame) const;
+  nlohmann::json encode_atlas(const AtlasSnapshot& atlas) const;
 
   ViewerOptions options_;
   const PauseGate* pause_;
@@ -76,6 +81,7 @@ class ViewerFeed {
   mutable std::mutex source_mutex_;  // publisher_ and newest_
   const Publisher* publisher_ = nullptr;
   Newest newest_;
+  std::optional<GroundTruthOverlay> groundtruth_;
   std::deque<std::pair<std::chrono::steady_clock::time_point, std::uint64_t>> rate_samples_;  // (time, frame id)
   double fps_ = 0;
   double encode_ms_total_ = 0;  // frame and map events encoded so far

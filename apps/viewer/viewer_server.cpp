@@ -157,4 +157,6 @@ std::string ViewerServer::url() const {
 
 void ViewerServer::attach(const Publisher* publisher) { impl_->feed.attach(publisher); }
 
+void ViewerServer::set_groundtruth(const Trajectory& groundtruth) { impl_->feed.set_groundtruth(groundtruth); }
+
 }  // namespace stillslam::viewer

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "stillslam/core/trajectory.h"
 #include "stillslam/publish/publisher.h"
 #include "stillslam/settings/viewer_options.h"
 #include "stillslam/system/pause_gate.h"
@@ -30,6 +31,8 @@ class ViewerServer {
   // Starts showing what `publisher` publishes (null: stops reading it; the
   // page keeps the last state).
   void attach(const Publisher* publisher);
+  // Ground truth to draw in the active map (aligned with its trajectory).
+  void set_groundtruth(const Trajectory& groundtruth);
 
  private:
   struct Impl;

@@ -133,6 +133,7 @@ TEST(ViewerPage, ChromiumShowsTheCountsTheSystemReported) {
         " drawn: document.getElementById('frame-canvas').dataset.frame || '',"
         " webgl: document.querySelector('#map-view canvas') !== null,"
         " maps: document.querySelectorAll('#map-list input').length,"
+        " groundtruth: !document.getElementById('gt-key').hidden,"
         " elements: ['frame-canvas', 'map-view', 'counters', 'btn-pause', 'btn-step', 'btn-resume']"
         "   .filter((id) => document.getElementById(id) !== null).length};";
     const std::string frame = std::to_string(state["frame"].get<int>());
@@ -153,6 +154,7 @@ TEST(ViewerPage, ChromiumShowsTheCountsTheSystemReported) {
     EXPECT_EQ(page["status"], "paused") << page;
     EXPECT_TRUE(page["webgl"].get<bool>()) << "no WebGL canvas (swiftshader): " << page;
     EXPECT_EQ(page["maps"], 1) << page;
+    EXPECT_TRUE(page["groundtruth"].get<bool>()) << "the sequence's groundtruth.txt is not drawn: " << page;
 
     const fs::path artifacts(STILLSLAM_ARTIFACT_DIR);
     fs::create_directories(artifacts);

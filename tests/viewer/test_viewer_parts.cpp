@@ -2,9 +2,11 @@
 // the embedded page.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "viewer/base64.h"
+#include "viewer/groundtruth_overlay.h"
 #include "viewer/snapshot_json.h"
 #include "viewer/web_files.h"
 
@@ -81,6 +83,34 @@ TEST(SnapshotJson, CountersOverlayAndAtlas) {
   EXPECT_DOUBLE_EQ(j["maps"][0]["points"][3].get<double>(), 0.123);  // 1 mm
   EXPECT_EQ(j["maps"][0]["keyframes"].size(), 14u);
   EXPECT_EQ(j["maps"][0]["covisibility"], nlohmann::json({0, 1}));
+}
+
+TEST(GroundTruthOverlay, AlignsTheGroundTruthWithTheMapsTrajectory) {
+  // The map's frame is the ground truth's moved by T_map_gt; a second map has too few poses.
+  Eigen::Isometry3d T_map_gt = Eigen::Isometry3d::Identity();
+  T_map_gt.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.2, 1, 0.1).normalized()).toRotationMatrix();
+  T_map_gt.translation() = Eigen::Vector3d(1, -2, 0.5);
+  Trajectory gt;
+  GroundTruthOverlay overlay({});
+  std::vector<Eigen::Vector3d> centres;
+  for (int i = 0; i < 40; ++i) {
+    StampedPose p;
+    p.timestamp = 100 + 0.1 * i;
+    p.T_world_cam.translation() = Eigen::Vector3d(std::sin(0.3 * i), 0.1 * i, std::cos(0.2 * i));
+    gt.push_back(p);
+  }
+  GroundTruthOverlay with_gt(gt);
+  for (int i = 0; i < 40; i += 2) with_gt.add(gt[i].timestamp + 0.001, T_map_gt * gt[i].T_world_cam.translation(), 3);
+  with_gt.add(gt[0].timestamp, Eigen::Vector3d::Zero(), 4);
+  const std::vector<Eigen::Vector3d> aligned = with_gt.aligned(3, 1000);
+  ASSERT_EQ(aligned.size(), 40u);
+  for (int i = 0; i < 40; ++i) {
+    EXPECT_LT((aligned[i] - T_map_gt * gt[i].T_world_cam.translation()).norm(), 1e-9) << i;
+  }
+  EXPECT_EQ(with_gt.aligned(3, 10).size(), 10u);  // thinned
+  EXPECT_TRUE(with_gt.aligned(4, 1000).empty());
+  EXPECT_TRUE(with_gt.aligned(5, 1000).empty());
+  EXPECT_TRUE(overlay.aligned(3, 1000).empty());
 }
 
 TEST(WebFiles, PageAndThreeJsAreEmbedded) {

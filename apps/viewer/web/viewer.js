@@ -206,6 +206,12 @@ function makeViewer3d() {
         new THREE.LineBasicMaterial({ color: 0x3ddc84, transparent: true, opacity: 0.35 })));
       g.add(new THREE.Line(new THREE.BufferGeometry().setAttribute('position', new THREE.Float32BufferAttribute(m.trajectory, 3)),
         new THREE.LineBasicMaterial({ color: m.active ? 0xffb347 : 0x7a5a2e })));
+      const gt = atlas.groundtruth;
+      if (gt && gt.map === m.id && gt.points.length >= 6) {
+        g.add(new THREE.Line(new THREE.BufferGeometry().setAttribute('position', new THREE.Float32BufferAttribute(gt.points, 3)),
+          new THREE.LineBasicMaterial({ color: 0x8fd18f, transparent: true, opacity: 0.7 })));
+        $('gt-key').hidden = false;
+      }
       maps.add(g);
     }
     mapList(atlas);
