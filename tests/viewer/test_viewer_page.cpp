@@ -5,9 +5,13 @@
 // and ends). A screenshot is kept in <build>/artifacts/viewer_page.png.
 #include <gtest/gtest.h>
 
-#include <array>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -28,24 +32,45 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-// stillslam run as a child whose merged output is read line by line.
+// stillslam run as a child whose merged output is read while it runs; a
+// child still running when the test ends (a failed assertion while it is
+// paused) is killed, not waited for.
 class RunningCommand {
  public:
-  explicit RunningCommand(const std::string& command) : pipe_(popen((command + " 2>&1").c_str(), "r")) {
-    if (pipe_ == nullptr) return;
-    reader_ = std::thread([this] {
-      std::array<char, 4096> line{};
-      while (std::fgets(line.data(), line.size(), pipe_)) {
+  explicit RunningCommand(const std::string& command) {
+    int fds[2] = {-1, -1};
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;
+    const std::string shell = "exec " + command + " 2>&1";
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(fds[1], 1);
+      ::execl("/bin/sh", "sh", "-c", shell.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    reader_ = std::thread([this, fd = fds[0]] {
+      char buffer[4096];
+      for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
         std::lock_guard lock(mutex_);
-        output_ += line.data();
+        output_.append(buffer, static_cast<std::size_t>(n));
       }
+      ::close(fd);
     });
   }
-  ~RunningCommand() { finish(); }
+  ~RunningCommand() {
+    if (pid_ > 0 && !waited_) ::kill(pid_, SIGKILL);
+    finish();
+  }
   int finish() {
+    if (pid_ > 0 && !waited_) {
+      while (::waitpid(pid_, &status_, 0) < 0 && errno == EINTR) {
+      }
+      waited_ = true;
+    }
     if (reader_.joinable()) reader_.join();
-    if (pipe_ != nullptr) status_ = pclose(pipe_);
-    pipe_ = nullptr;
     return status_;
   }
   std::string output() const {
@@ -54,16 +79,17 @@ class RunningCommand {
   }
 
  private:
-  FILE* pipe_;
+  pid_t pid_ = -1;
+  bool waited_ = false;
+  int status_ = -1;
   std::thread reader_;
   mutable std::mutex mutex_;
   std::string output_;
-  int status_ = -1;
 };
 
 nlohmann::json get_json(httplib::Client& client, const std::string& path) {
   auto res = client.Get(path);
-  return res && res->status == 200 ? nlohmann::json::parse(res->body) : nlohmann::json();
+  return res && res->status == 200 ? nlohmann::json::parse(res->body) : nlohmann::json::object();
 }
 
 TEST(ViewerPage, ChromiumShowsTheCountsTheSystemReported) {
@@ -95,22 +121,30 @@ TEST(ViewerPage, ChromiumShowsTheCountsTheSystemReported) {
   httplib::Client client("127.0.0.1", port);
   client.set_read_timeout(10, 0);
 
-  // Let it track a while, then hold it on one frame.
-  nlohmann::json state;
-  for (int i = 0; i < 1200; ++i) {
-    state = get_json(client, "/api/state");
-    if (state.contains("frame") && state["frame"].get<int>() >= 12 && state.value("keyframes", 0) >= 1) break;
-    std::this_thread::sleep_for(25ms);
-  }
+  // Paused at once (the model is still loading), then stepped 12 frames: the
+  // same frame is held however fast the machine is.
   ASSERT_TRUE(client.Post("/api/pause")) << run.output();
-  // The frame in progress finishes; then nothing changes.
-  std::this_thread::sleep_for(300ms);
-  for (int i = 0; i < 100; ++i) {
-    const nlohmann::json before = get_json(client, "/api/state");
-    std::this_thread::sleep_for(200ms);
+  const auto settled = [&client] {
+    nlohmann::json now = get_json(client, "/api/state");
+    for (int i = 0; i < 100; ++i) {
+      std::this_thread::sleep_for(200ms);
+      const nlohmann::json later = get_json(client, "/api/state");
+      const auto same = [&](const char* key) { return later.value(key, -1) == now.value(key, -1); };
+      if (same("frame") && same("map_points") && same("keyframes")) break;
+      now = later;
+    }
+    return now;
+  };
+  const int done_before = settled().value("frame", -1) + 1;
+  constexpr int kSteps = 12;
+  for (int i = 0; i < kSteps; ++i) ASSERT_TRUE(client.Post("/api/step"));
+  nlohmann::json state = nlohmann::json::object();
+  for (int i = 0; i < 2400 && state.value("frame", -1) != done_before + kSteps - 1; ++i) {
+    std::this_thread::sleep_for(25ms);
     state = get_json(client, "/api/state");
-    if (before["frame"] == state["frame"] && before["map_points"] == state["map_points"]) break;
   }
+  state = settled();
+  ASSERT_EQ(state.value("frame", -1), done_before + kSteps - 1) << state.dump() << run.output();
   ASSERT_TRUE(state["paused"].get<bool>()) << state.dump();
   EXPECT_GT(state["features_removed"].get<int>(), 0) << "no feature removed: the model saw no person? " << state;
   EXPECT_GT(state["map_points"].get<int>(), 0);
