@@ -25,6 +25,7 @@
 #include "frame_saver.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
+#include "run_viewer.h"
 #include "signal_watcher.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
@@ -66,6 +67,7 @@ struct RunArgs {
   std::vector<std::string> topics;  // ROS 2 bag input
   double pair_tolerance = 0.02;
   bool side_by_side = false, camera_info_from_bag = false;
+  RunViewerArgs viewer;
 };
 
 std::optional<fs::path> find_groundtruth(const RunArgs& args) {
@@ -130,6 +132,7 @@ void run(const RunArgs& args) {
   options.realtime = args.realtime;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
+  const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, options, find_groundtruth(args));
 
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
   std::vector<std::size_t> features_removed;  // per processed frame, from its snapshot
@@ -317,6 +320,7 @@ void add_run_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--groundtruth", args->groundtruth,
                   "ground truth for the closing ATE (default: groundtruth.txt in the input folder)");
+  add_viewer_options(*cmd, args->viewer);
   cmd->footer(kExitCodes);
   cmd->callback([args] { run(*args); });
 }

@@ -172,7 +172,10 @@ TEST(OptionChecks, LoopClosingAndViewer) {
       bad<MapMergerOptions>("MapMergerOptions.fuse_window", "-1: must be > 0", [](auto& o) { o.fuse_window = -1; }),
       bad<MapMergerOptions>("BundleAdjustmentOptions.iterations", "0: must be >= 1",
                             [](auto& o) { o.welding_bundle_adjustment.iterations = 0; }),
-      bad<ViewerOptions>("ViewerOptions.port", "0: must be in [1, 65535]", [](auto& o) { o.port = 0; }),
+      bad<ViewerOptions>("ViewerOptions.port", "70000: must be in [0, 65535]", [](auto& o) { o.port = 70000; }),
+      bad<ViewerOptions>("ViewerOptions.image_rate", "0: must be in [0.1, 60]", [](auto& o) { o.image_rate = 0; }),
+      bad<ViewerOptions>("ViewerOptions.jpeg_quality", "101: must be in [10, 100]",
+                         [](auto& o) { o.jpeg_quality = 101; }),
       bad<ViewerOptions>("ViewerOptions.host", "empty: must be a host name or address", [](auto& o) { o.host = " "; }),
   });
 }

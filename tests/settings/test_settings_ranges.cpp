@@ -176,7 +176,10 @@ const std::vector<Case> kSectionCases = {
     {"LoopClosing.baIterations", "1e6", "is 1000000: must be in [1, 1000]"},
     {"LoopClosing.mergeMinInliers", "0", "is 0: must be in [1, 50000]"},
     {"LoopClosing.mergeMinInliers", "1e6", "is 1000000: must be in [1, 50000]"},
-    {"Viewer.port", "0", "is 0: must be in [1, 65535]"},
+    {"Viewer.port", "-1", "is -1: must be in [0, 65535]"},
+    {"Viewer.image_rate", "0", "is 0: must be in [0.1, 60]"},
+    {"Viewer.map_rate", "100", "is 100: must be in [0.1, 30]"},
+    {"Viewer.jpeg_quality", "5", "is 5: must be in [10, 100]"},
 };
 
 TEST(SettingsRanges, EverySectionKeyOutOfRangeNamesKeyValueAndRange) {

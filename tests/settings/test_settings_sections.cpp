@@ -321,7 +321,7 @@ TEST(SettingsSections, BadValuesNameFileKeyValueAndRange) {
       {base + "LoopClosing.mergeMinInliers: -1\n", "LoopClosing.mergeMinInliers", "is -1: must be in [1, 50000]"},
       {base + "LoopClosing.minCommonWordsRatio: 2\n", "LoopClosing.minCommonWordsRatio", "is 2: must be in [0, 1]"},
       {base + "LoopClosing: 1\n", "LoopClosing", "must be a map"},
-      {base + "Viewer.port: 70000\n", "Viewer.port", "is 70000: must be in [1, 65535]"},
+      {base + "Viewer.port: 70000\n", "Viewer.port", "is 70000: must be in [0, 65535]"},
       {base + "Viewer.host: 12\n", "Viewer.host", "must be a string"},
   };
   for (const Case& c : cases) {

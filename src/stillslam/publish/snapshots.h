@@ -42,6 +42,7 @@ struct FrameSnapshot {
   int keypoints_with_depth = 0;
   int detections = 0;           // detections of the segmenter (all classes)
   double mask_coverage = 0;     // fraction of the image in the dynamic mask
+  double held_coverage = 0;     // of which held over from instances the segmenter lost (MaskHold)
   int matches = 0, inliers = 0;
   double total_ms = 0;          // this frame, frame building + tracking (+ synchronous mapping)
 };

@@ -48,22 +48,39 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     p.total_frames = n - std::min(first, n);
     progress.emplace(system.publisher(), p);
   }
+  if (options.on_start) options.on_start(system);
+  // on_end runs however this function leaves, before `system` is destroyed.
+  struct EndNotice {
+    const std::function<void()>& on_end;
+    ~EndNotice() {
+      if (on_end) on_end();
+    }
+  } end_notice{options.on_end};
 
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
   if (n > first) next = std::async(std::launch::async, load, first);
   const double t0 = n > first ? dataset.timestamp(first) : 0.0;
+  double paused_seconds = 0;
   try {
     for (std::size_t i = first; i < n; ++i) {
       if (options.stop != nullptr && options.stop->load()) {
         out.interrupted = true;
         break;
       }
+      if (options.pause != nullptr) {
+        Stopwatch held;
+        if (!options.pause->wait(options.stop)) {
+          out.interrupted = true;
+          break;
+        }
+        paused_seconds += held.elapsed_ms() / 1000.0;  // not late: realtime pacing starts again
+      }
       SensorFrame frame = next.get();
       if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
       if (options.realtime) {
         const double due = dataset.timestamp(i) - t0;
-        const double now = wall.elapsed_ms() / 1000.0;
+        const double now = wall.elapsed_ms() / 1000.0 - paused_seconds;
         if (i + 1 < n && now > dataset.timestamp(i + 1) - t0) {
           ++out.dropped_frames;
           continue;

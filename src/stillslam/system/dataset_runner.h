@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stillslam/io/dataset.h"
+#include "stillslam/system/pause_gate.h"
 #include "stillslam/system/progress.h"
 #include "stillslam/system/system.h"
 
@@ -29,6 +30,12 @@ struct RunOptions {
   // Checked before each frame (also before the first one: a stop requested
   // while the system was being built ends the run with no frame processed).
   const std::atomic<bool>* stop = nullptr;
+  // Waited on before each frame (the viewer's pause / step / resume).
+  PauseGate* pause = nullptr;
+  // Called once the System exists (a viewer attaches to its publisher) and
+  // before it is destroyed (the viewer lets go of it).
+  std::function<void(const System&)> on_start;
+  std::function<void()> on_end;
   std::function<void(const FrameStats&, const System&)> on_frame;
   // A progress line on stderr while the run lasts (total_frames is filled in).
   std::optional<ProgressOptions> progress;

@@ -388,6 +388,7 @@ void System::publish(const SensorFrame& input, const Frame& frame, const FrameSt
   f->keypoints_with_depth = stats.build.keypoints_with_depth;
   f->detections = stats.build.detections;
   f->mask_coverage = stats.build.mask_coverage;
+  f->held_coverage = stats.build.held_coverage;
   f->matches = stats.matches;
   f->inliers = stats.inliers;
   f->total_ms = stats.total_ms;
