@@ -11,10 +11,6 @@
 
 namespace stillslam::ros2 {
 
-// The ROS encoding of an OpenCV image type: CV_8UC1 "mono8", CV_8UC3 "bgr8",
-// CV_16UC1 "16UC1", CV_32FC1 "32FC1"; Error for other types.
-std::string image_encoding(const cv::Mat& image);
-
 class OutgoingImage {
  public:
   // `image` is shared (not copied); a non-continuous one is copied.
@@ -33,10 +29,8 @@ class OutgoingImage {
 // elsewhere (whatever non-zero value the mask uses).
 cv::Mat1b mask_image(const cv::Mat1b& mask);
 
-// A copy of the message's pixels: mono8 -> CV_8UC1; bgr8 -> CV_8UC3;
-// rgb8, bgra8, rgba8 -> CV_8UC3 BGR; 16UC1 / mono16 -> CV_16UC1; 32FC1 ->
-// CV_32FC1. Error naming `topic` for another encoding, big-endian multi-byte
-// data, or a step/data size that does not fit width x height.
+// A copy of the message's pixels, decoded as a bag's Image is
+// (io/ros2_image_convert.h: the same encodings, byte order and step checks).
 cv::Mat image_from_message(const sensor_msgs_msg_dds__Image_& message, const std::string& topic);
 
 }  // namespace stillslam::ros2

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 
+#include "stillslam/core/base64.h"
 #include "stillslam/core/stopwatch.h"
 
-#include "viewer/base64.h"
 
 namespace stillslam::viewer {
 
@@ -127,7 +127,7 @@ std::string ViewerFeed::encode_frame(const FrameSnapshot& frame) const {
   if (!frame.image.empty()) {
     std::vector<std::uint8_t> bytes;
     cv::imencode(".jpg", frame.image, bytes, {cv::IMWRITE_JPEG_QUALITY, options_.jpeg_quality});
-    data["image"] = "data:image/jpeg;base64," + base64(bytes);
+    data["image"] = "data:image/jpeg;base64," + base64_encode(bytes);
   }
   return *event("frame", data);
 }

@@ -42,7 +42,7 @@ TEST(LiveNode, AnUnsupportedEncodingEndsTheRunWithAClearError) {
   stop = true;  // ends the node whatever happened (the test then fails below)
   node.join();
   ASSERT_TRUE(result.run.error.has_value());
-  EXPECT_TRUE(test::contains(*result.run.error, "rt/test/left: image encoding 'yuv422' is not supported (use mono8"))
+  EXPECT_TRUE(test::contains(*result.run.error, "rt/test/left: image encoding 'yuv422' is not supported (supported: mono8"))
       << *result.run.error;
   EXPECT_EQ(result.run.end, RunEnd::InputError);
   EXPECT_EQ(result.received_first, 1u);

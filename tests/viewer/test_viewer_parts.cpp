@@ -1,29 +1,16 @@
-// The viewer's pieces without a server: base64, the JSON of the snapshots,
+// The viewer's pieces without a server: the JSON of the snapshots,
 // the embedded page.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "viewer/base64.h"
 #include "viewer/groundtruth_overlay.h"
 #include "viewer/snapshot_json.h"
 #include "viewer/web_files.h"
 
 namespace stillslam::viewer {
 namespace {
-
-TEST(Base64, Rfc4648Vectors) {
-  const auto b = [](const std::string& s) { return base64(std::vector<std::uint8_t>(s.begin(), s.end())); };
-  EXPECT_EQ(b(""), "");
-  EXPECT_EQ(b("f"), "Zg==");
-  EXPECT_EQ(b("fo"), "Zm8=");
-  EXPECT_EQ(b("foo"), "Zm9v");
-  EXPECT_EQ(b("foob"), "Zm9vYg==");
-  EXPECT_EQ(b("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(b("foobar"), "Zm9vYmFy");
-  EXPECT_EQ(base64({0xff, 0xfe, 0x00}), "//4A");
-}
 
 TEST(SnapshotJson, CountersOverlayAndAtlas) {
   FrameSnapshot f;

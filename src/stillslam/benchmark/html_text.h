@@ -11,8 +11,6 @@ namespace stillslam {
 // `text` with & < > " ' replaced by entities (safe in elements and quoted attributes).
 std::string html_escape(std::string_view text);
 
-// RFC 4648 base64 with padding.
-std::string base64_encode(const std::vector<std::uint8_t>& bytes);
 
 // "data:<mime>;base64,..." for an <img src>.
 std::string data_uri(const std::string& mime, const std::vector<std::uint8_t>& bytes);

@@ -44,12 +44,16 @@ std::pair<int, int> raw_type(const std::string& e) {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+std::optional<std::string> unsupported_encoding(const std::string& encoding, const std::string& topic) {
+  if (raw_type(encoding).first >= 0) return std::nullopt;
+  return where(topic) + ": image encoding '" + encoding + "' is not supported (supported: " + kSupportedRaw +
+         "); convert the topic, e.g. with image_proc, or record a supported encoding";
+}
+
 }  // namespace
 
 std::optional<std::string> unsupported(const Image& m, const std::string& topic) {
-  if (raw_type(m.encoding).first >= 0) return std::nullopt;
-  return where(topic) + ": image encoding '" + m.encoding + "' is not supported (supported: " + kSupportedRaw +
-         "); convert the topic, e.g. with image_proc, or record a supported encoding";
+  return unsupported_encoding(m.encoding, topic);
 }
 
 std::optional<std::string> unsupported(const CompressedImage& m, const std::string& topic) {
@@ -64,20 +68,25 @@ std::optional<std::string> unsupported(const CompressedImage& m, const std::stri
 }
 
 cv::Mat image_to_mat(const Image& m, const std::string& topic) {
-  if (const auto why = unsupported(m, topic)) throw Error(*why);
+  return image_to_mat(ImageView{m.height, m.width, m.encoding, m.is_bigendian, m.step, m.data.data(), m.data.size()},
+                      topic);
+}
+
+cv::Mat image_to_mat(const ImageView& m, const std::string& topic) {
+  if (const auto why = unsupported_encoding(m.encoding, topic)) throw Error(*why);
   const std::string& e = m.encoding;
   const auto [type, conversion] = raw_type(e);
   const std::size_t row_bytes = static_cast<std::size_t>(m.width) * CV_ELEM_SIZE(type);
   if (m.width == 0 || m.height == 0 || m.step < row_bytes ||
-      m.data.size() < static_cast<std::size_t>(m.step) * (m.height - 1) + row_bytes) {
+      m.size < static_cast<std::size_t>(m.step) * (m.height - 1) + row_bytes) {
     throw Error(where(topic) + ": image " + std::to_string(m.width) + "x" + std::to_string(m.height) + " '" + e +
                 "' with step " + std::to_string(m.step) + " needs " +
                 std::to_string(static_cast<std::size_t>(m.step) * m.height) + " bytes of data, the message has " +
-                std::to_string(m.data.size()));
+                std::to_string(m.size));
   }
   cv::Mat mat(static_cast<int>(m.height), static_cast<int>(m.width), type);
   for (int y = 0; y < mat.rows; ++y) {
-    std::memcpy(mat.ptr(y), m.data.data() + static_cast<std::size_t>(y) * m.step, row_bytes);
+    std::memcpy(mat.ptr(y), m.data + static_cast<std::size_t>(y) * m.step, row_bytes);
   }
   const bool host_big = false;
   if (CV_ELEM_SIZE1(type) > 1 && (m.is_bigendian != 0) != host_big) {
@@ -124,16 +133,22 @@ cv::Mat compressed_image_to_mat(const CompressedImage& m, const std::string& top
   return image;
 }
 
+std::string ros_encoding(const cv::Mat& mat) {
+  switch (mat.type()) {
+    case CV_8UC1: return "mono8";
+    case CV_8UC3: return "bgr8";
+    case CV_16UC1: return "16UC1";
+    case CV_32FC1: return "32FC1";
+    default: break;
+  }
+  throw Error("no ROS image encoding for OpenCV type " + std::to_string(mat.type()) +
+              " (mono8, bgr8, 16UC1 and 32FC1 are written)");
+}
+
 Image mat_to_image(const cv::Mat& mat, const Header& header) {
   Image m;
   m.header = header;
-  switch (mat.type()) {
-    case CV_8UC1: m.encoding = "mono8"; break;
-    case CV_8UC3: m.encoding = "bgr8"; break;
-    case CV_16UC1: m.encoding = "16UC1"; break;
-    case CV_32FC1: m.encoding = "32FC1"; break;
-    default: throw Error("mat_to_image: image type " + std::to_string(mat.type()) + " has no ROS encoding here");
-  }
+  m.encoding = ros_encoding(mat);
   m.height = static_cast<std::uint32_t>(mat.rows);
   m.width = static_cast<std::uint32_t>(mat.cols);
   m.step = static_cast<std::uint32_t>(mat.cols * mat.elemSize());
