@@ -4,22 +4,6 @@
 
 namespace stillslam {
 
-std::string html_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string data_uri(const std::string& mime, const std::vector<std::uint8_t>& bytes) {
   return "data:" + mime + ";base64," + base64_encode(bytes);
 }

@@ -1,16 +1,15 @@
 #pragma once
-// Text helpers for the self-contained HTML run report: escaping, and base64
-// for images inlined as data URIs (the report loads nothing from outside).
+// Text helpers for the self-contained HTML run report (html_escape comes from
+// core/text.h): images inlined as data URIs, SVG inlined (the report loads
+// nothing from outside).
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "stillslam/core/text.h"  // html_escape
+
 namespace stillslam {
-
-// `text` with & < > " ' replaced by entities (safe in elements and quoted attributes).
-std::string html_escape(std::string_view text);
-
 
 // "data:<mime>;base64,..." for an <img src>.
 std::string data_uri(const std::string& mime, const std::vector<std::uint8_t>& bytes);

@@ -1,5 +1,6 @@
 #pragma once
-// Small text helpers shared by the readers of settings, lists and trajectories.
+// Small text helpers shared by the readers of settings, lists and trajectories
+// and by the HTML / SVG writers.
 // One header, so no module keeps a file-local copy (two file-local copies
 // collide when a unity build puts their files in one translation unit).
 #include <algorithm>
@@ -16,6 +17,24 @@ inline std::string trim(std::string_view s) {
   if (begin == std::string_view::npos) return {};
   const auto end = s.find_last_not_of(" \t\r\n");
   return std::string(s.substr(begin, end - begin + 1));
+}
+
+// `text` with & < > " ' as character references, for HTML and SVG text and
+// attribute values.
+inline std::string html_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 // ASCII lower case.

@@ -7,24 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "stillslam/core/text.h"
+
 namespace stillslam {
 namespace {
 
 constexpr double kLeft = 80, kRight = 20, kTop = 40, kBottom = 60;
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string num(double v) {
   char buffer[32];
@@ -102,7 +90,7 @@ std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOp
                     "\" height=\"" + std::to_string(options.height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   svg += "<text x=\"" + num(options.width / 2.0) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">" +
-         escape(options.title) + "</text>\n";
+         html_escape(options.title) + "</text>\n";
   svg += "<rect x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" + num(plot_w) + "\" height=\"" +
          num(plot_h) + "\" fill=\"none\" stroke=\"black\"/>\n";
 
@@ -121,9 +109,9 @@ std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOp
            "</text>\n";
   }
   svg += "<text x=\"" + num(kLeft + plot_w / 2) + "\" y=\"" + num(options.height - 14.0) +
-         "\" text-anchor=\"middle\">" + escape(options.x_label) + "</text>\n";
+         "\" text-anchor=\"middle\">" + html_escape(options.x_label) + "</text>\n";
   svg += "<text transform=\"translate(18," + num(kTop + plot_h / 2) + ") rotate(-90)\" text-anchor=\"middle\">" +
-         escape(options.y_label) + "</text>\n";
+         html_escape(options.y_label) + "</text>\n";
 
   for (const PlotSeries& s : series) {
     // A non-finite point ends one polyline and starts the next (gaps in tracking).
@@ -137,7 +125,7 @@ std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOp
     }
     for (const std::string& points : runs) {
       if (points.empty()) continue;
-      svg += "<polyline fill=\"none\" stroke=\"" + escape(s.color) + "\" stroke-width=\"1.5\"" +
+      svg += "<polyline fill=\"none\" stroke=\"" + html_escape(s.color) + "\" stroke-width=\"1.5\"" +
              (s.dashed ? " stroke-dasharray=\"6,4\"" : "") + " points=\"" + points + "\"/>\n";
     }
   }
@@ -150,9 +138,9 @@ std::string render_line_plot(const std::vector<PlotSeries>& series, const PlotOp
   double legend_y = kTop + 16;
   for (const PlotSeries& s : series) {
     svg += "<line x1=\"" + num(kLeft + 10) + "\" y1=\"" + num(legend_y - 4) + "\" x2=\"" + num(kLeft + 34) +
-           "\" y2=\"" + num(legend_y - 4) + "\" stroke=\"" + escape(s.color) + "\" stroke-width=\"2\"" +
+           "\" y2=\"" + num(legend_y - 4) + "\" stroke=\"" + html_escape(s.color) + "\" stroke-width=\"2\"" +
            (s.dashed ? " stroke-dasharray=\"6,4\"" : "") + "/>\n";
-    svg += "<text x=\"" + num(kLeft + 40) + "\" y=\"" + num(legend_y) + "\">" + escape(s.label) + "</text>\n";
+    svg += "<text x=\"" + num(kLeft + 40) + "\" y=\"" + num(legend_y) + "\">" + html_escape(s.label) + "</text>\n";
     legend_y += 16;
   }
   svg += "</svg>\n";
