@@ -11,7 +11,7 @@
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
-#include "stillslam/tracking/thread_cpu_stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 
 namespace stillslam {
 
@@ -126,7 +126,10 @@ void System::build_pipeline(const Settings& settings) {
   // keyframe goes on to loop closing and to merge detection.
   LocalMapperOptions mapping = settings.local_mapping;
   mapping.threaded = mode == WorkerMode::Threaded;
-  if (options_.deterministic) mapping.bundle_adjustment.num_threads = 1;
+  if (options_.deterministic) {
+    mapping.bundle_adjustment.num_threads = 1;
+    mapping.bundle_adjustment.max_seconds_per_pass = 0;  // a wall-clock budget would not repeat
+  }
   if (recognizer_) {
     LoopCloser* loop_closer = loop_closer_.get();
     WorkQueue<KeyFramePtr>* finished = merge_detector_ ? &finished_keyframes_ : nullptr;
