@@ -159,7 +159,15 @@ BENCHMARK(BM_LocalBundleAdjustment)
     ->Args({20, 2000, 2, 1, 1, 0})
     ->Args({20, 2000, 2, 0, 1, 4})
     ->Args({20, 2000, 2, 0, 1, 3})
-    ->Unit(benchmark::kMillisecond);
+    // The median local BA window of the halfsphere run before (42 free
+    // keyframes, 3500 points) and after (12 + 8 fixed, 1400 points) the budget.
+    ->Args({42, 3500, 2, 1, 0, 0})
+    ->Args({42, 3500, 2, 1, 1, 3})
+    ->Args({20, 1400, 2, 0, 0, 3})
+    ->Args({20, 1400, 2, 0, 1, 3})
+    ->Args({20, 1400, 1, 0, 0, 3})
+    ->Args({20, 1400, 1, 0, 1, 3})
+->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace stillslam

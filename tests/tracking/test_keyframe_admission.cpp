@@ -24,7 +24,9 @@ TEST(KeyFrameAdmission, TooFewClosePointsQueueOneKeyframeBehindTheBundleAdjustme
   EXPECT_FALSE(admit_keyframe(false, false, true, 1).insert);
 }
 
-TEST(KeyFrameAdmission, WeakTrackingInterruptsUpToThreeQueued) {
+TEST(KeyFrameAdmission, WeakTrackingQueuesUpToThreeAndInterruptsOnlyABacklog) {
+  EXPECT_TRUE(admit_keyframe(false, true, false, 0).insert);
+  EXPECT_FALSE(admit_keyframe(false, true, false, 0).interrupt_bundle_adjustment);
   EXPECT_TRUE(admit_keyframe(false, true, false, 2).insert);
   EXPECT_TRUE(admit_keyframe(false, true, false, 2).interrupt_bundle_adjustment);
   EXPECT_FALSE(admit_keyframe(false, true, true, 3).insert);

@@ -1,9 +1,11 @@
 #pragma once
 // What tracking does with a keyframe it wants while local mapping is busy
-// (ORB-SLAM3's AcceptKeyFrames false): a running local BA is interrupted only
-// when tracking is about to fail; the RGB-D/stereo close-point exception
-// queues one keyframe behind the BA; otherwise the keyframe waits (tracking
-// asks again on the next frame) instead of aborting the BA.
+// (ORB-SLAM3's AcceptKeyFrames false). Tracking about to fail: the keyframe
+// is queued (up to three), and the running local BA is interrupted only when
+// another keyframe already waits (the mapper is falling behind). Too few close
+// points tracked (the RGB-D/stereo exception): one keyframe queues behind the
+// BA. Otherwise the keyframe waits (tracking asks again on the next frame)
+// instead of aborting the BA.
 #include <cstddef>
 
 namespace stillslam {
