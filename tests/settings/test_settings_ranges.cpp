@@ -137,7 +137,7 @@ const std::vector<Case> kSectionCases = {
     {"LocalMapping.baFunctionTolerance", "2", "is 2: must be in [0, 1]"},
     {"LocalMapping.baMaxSeconds", "-1", "is -1: must be in [0, 60]"},
     {"LocalMapping.windowKeyframes", "-1", "is -1: must be in [0, 1000]"},
-    {"LocalMapping.windowObservations", "1e9", "is 1000000000: must be in [0, 10000000]"},
+    {"LocalMapping.windowObservations", "6000000", "is 6000000: must be in [0, 5000000]"},
     {"LocalMapping.triangulationNeighbours", "0", "is 0: must be in [1, 1000]"},
     {"LocalMapping.triangulationNeighbours", "1e6", "is 1000000: must be in [1, 1000]"},
     {"LocalMapping.fusionNeighbours", "0", "is 0: must be in [1, 1000]"},

@@ -22,7 +22,7 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
                {0, 1000});
   keys.integer("windowPoints", window.max_points, "LocalWindowOptions.max_points", {0, 1000000});
   keys.integer("windowObservations", window.max_observations, "LocalWindowOptions.max_observations",
-               {0, 10000000});
+               {0, 5000000});
   // New points, fusion, culling.
   keys.count("triangulationNeighbours", options.triangulation.neighbours,
              "PointTriangulationOptions.neighbours", {1, 1000});
