@@ -63,8 +63,9 @@ void LocalMapper::process(const KeyFramePtr& kf) {
     std::lock_guard<std::mutex> lock(map_->update_mutex());
     fuse_with_neighbours(*kf, options_.fusion);
   }
-  if (options_.enable_bundle_adjustment && hurry()) delta.bundle_adjustments_skipped = 1;
-  if (!hurry() && options_.enable_bundle_adjustment) {
+  const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry();
+  if (options_.enable_bundle_adjustment && !run_bundle_adjustment) delta.bundle_adjustments_skipped = 1;
+  if (run_bundle_adjustment) {
     LocalBundleAdjustmentProblem problem;
     {
       std::lock_guard<std::mutex> lock(map_->update_mutex());
