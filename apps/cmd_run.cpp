@@ -181,7 +181,7 @@ void run(const RunArgs& args) {
                       {"moved_keyframes", m.moved_keyframes}, {"welding_keyframes", m.welding_keyframes}});
   }
   stats["map_merges"] = std::move(merges);
-  stats["local_mapping"] = to_json(result.mapper);
+  stats["local_mapping"] = to_json(result.mapper, result.frames.size());
   stats["loop_closing_stats"] = to_json(result.loop_closer);
   stats["summary"]["relocalizations"] = result.relocalizations;
   if (result.error) stats["summary"]["error"] = *result.error;

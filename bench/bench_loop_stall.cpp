@@ -30,7 +30,7 @@
 #include "stillslam/loop/loop_correction.h"
 #include "stillslam/loop/loop_detector.h"
 #include "stillslam/loop/place_recognizer.h"
-#include "stillslam/tracking/thread_cpu_stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 
 using namespace stillslam;
 

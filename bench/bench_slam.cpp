@@ -117,7 +117,7 @@ int bench(const Args& a) {
   out["input"] = a.input;
   out["mask_misses"] = {{"rate", a.misses.rate}, {"burst_seconds", a.misses.burst_seconds}, {"seed", a.misses.seed}};
   out["summary"] = to_json(s);
-  out["local_mapping"] = to_json(r.mapper);
+  out["local_mapping"] = to_json(r.mapper, r.frames.size());
   out["frames"] = nlohmann::json::array();
   for (const FrameStats& f : r.frames) out["frames"].push_back(to_json(f));
   std::printf("%s (%s, segmentation %s, %s)\n", a.input.c_str(), to_string(dataset->sensor()),

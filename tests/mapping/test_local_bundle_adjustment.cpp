@@ -29,6 +29,39 @@ TEST(LocalBundleAdjustment, WindowHasCovisiblesAndFixedObservers) {
   EXPECT_EQ(p.ba_observations.size(), observations);
 }
 
+TEST(LocalBundleAdjustment, WindowStaysWithinItsBudget) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 8; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  const LocalBundleAdjustmentProblem all = gather_local_window(*kfs[7], LocalWindowOptions{0, 0, 0, 0});
+  ASSERT_EQ(all.keyframes.size(), 8u);
+
+  LocalWindowOptions budget;
+  budget.max_keyframes = 3;
+  budget.max_fixed_keyframes = 2;
+  budget.max_points = 0;
+  budget.max_observations = static_cast<int>(all.ba_observations.size() / 2);
+  const LocalBundleAdjustmentProblem p = gather_local_window(*kfs[7], budget);
+  int free_keyframes = 0, fixed = 0;
+  for (const auto& k : p.ba_keyframes) (k.fixed ? fixed : free_keyframes) += 1;
+  // The new keyframe and its two heaviest covisibles are free (the origin, if
+  // picked, would be fixed), at most two observers are fixed.
+  EXPECT_EQ(p.keyframes[0], kfs[7]);
+  EXPECT_EQ(p.keyframes[1], kfs[7]->covisibles()[0]->shared_from_this());
+  EXPECT_EQ(p.keyframes[2], kfs[7]->covisibles()[1]->shared_from_this());
+  EXPECT_EQ(free_keyframes + fixed, 5);
+  EXPECT_LE(p.ba_observations.size(), all.ba_observations.size() / 2);
+  EXPECT_GT(p.ba_observations.size(), all.ba_observations.size() / 4);
+  EXPECT_LT(p.points.size(), all.points.size());
+  // The new keyframe's points come first.
+  EXPECT_TRUE(p.points.front()->is_observed_by(kfs[7].get()));
+
+  budget.max_observations = 0;
+  budget.max_points = 100;
+  EXPECT_EQ(gather_local_window(*kfs[7], budget).points.size(), 100u);
+}
+
 TEST(LocalBundleAdjustment, ReducesInjectedNoiseAndRemovesOutliers) {
   test::SyntheticScene scene;
   test::MapBuilder builder(scene);

@@ -71,5 +71,34 @@ TEST(LocalMapper, PauseIsANoOpInSynchronousMode) {
   EXPECT_EQ(rec.processed[0], kfs[2]->id());
 }
 
+// A keyframe queued behind another does not cost the first its BA; a
+// backlog of two does (the mapper hurries to catch up).
+TEST(LocalMapper, OneWaitingKeyframeKeepsTheBundleAdjustmentABacklogSkipsIt) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 6; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  for (int backlog : {2, 3}) {
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, true);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    LocalMapper mapper(builder.map(), o);
+    mapper.pause();
+    for (int k = 0; k < backlog; ++k) mapper.insert_keyframe(kfs[static_cast<std::size_t>(3 + k)]);
+    mapper.resume();
+    mapper.flush();
+    const LocalMapperStats stats = mapper.stats();
+    EXPECT_EQ(stats.keyframes, backlog);
+    EXPECT_EQ(stats.bundle_adjustments_aborted, 0);
+    EXPECT_EQ(stats.bundle_adjustments_skipped, backlog - 2);
+    EXPECT_EQ(stats.bundle_adjustments, 2);
+    ASSERT_EQ(stats.bundle_adjustment_runs.size(), 2u);
+    EXPECT_GE(stats.bundle_adjustment_runs[0].keyframes, 1);
+    EXPECT_GT(stats.bundle_adjustment_runs[0].observations, 0);
+    EXPECT_GT(stats.cpu_ms, 0);
+  }
+}
+
 }  // namespace
 }  // namespace stillslam

@@ -48,7 +48,7 @@ void write_run_files(const fs::path& dir, const RunResult& result, const Benchma
   stats["summary"] = to_json(summarize_run(result.frames));
   stats["summary"]["wall_seconds"] = result.wall_seconds;
   if (result.error) stats["summary"]["error"] = *result.error;
-  stats["local_mapping"] = to_json(result.mapper);
+  stats["local_mapping"] = to_json(result.mapper, result.frames.size());
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
   for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
@@ -97,6 +97,7 @@ RunRecord run_once(const Settings& settings, const Dataset& dataset, const Bench
   record.tracker_ms = summary.tracking_ms;
   record.segmentation_ms = summarize_positive(result.frames, [](const FrameStats& f) { return f.build.segmentation_ms; });
   record.segmentation_wait_ms = summary.segmentation_wait_ms;
+  record.local_ba = summarize_local_bundle_adjustment(result.mapper, result.frames.size());
   record.trajectory = result.trajectory;
   if (!run_dir.empty()) {
     try {

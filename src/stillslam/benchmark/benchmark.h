@@ -61,6 +61,7 @@ struct RunRecord {
   TimingSummary segmentation_ms;  // segmenter per frame, on its own thread (frames it ran on)
   TimingSummary segmentation_wait_ms;
   double wall_seconds = 0;
+  LocalBundleAdjustmentSummary local_ba;  // local BA times, aborted share, windows, mapping CPU per frame
   std::optional<AccuracyStats> accuracy;  // absent when the run could not be evaluated
   std::optional<std::string> evaluation_error;
   std::filesystem::path trajectory_file;  // empty when not written

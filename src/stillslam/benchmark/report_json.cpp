@@ -33,6 +33,8 @@ nlohmann::json run_json(const RunRecord& r) {
                      {"segmentation", to_json(r.segmentation_ms)},
                      {"segmentation_wait", to_json(r.segmentation_wait_ms)}}},
                    {"wall_seconds", r.wall_seconds},
+                   {"local_ba", to_json(r.local_ba)},
+                   {"mapping_cpu_ms_per_frame", r.local_ba.mapping_cpu_ms_per_frame},
                    {"trajectory", r.trajectory_file.string()},
                    {"failed", r.failed()}};
   if (r.error) j["error"] = *r.error;

@@ -126,6 +126,26 @@ void timing_table(std::ostringstream& md, const SequenceResult& s) {
      << (on ? std::to_string(on->keyframes) : "n/a") << " |\n";
   md << "| wall time of the run [s] | " << cell(off, [](const RunRecord& r) { return r.wall_seconds; }, 1) << " | "
      << cell(on, [](const RunRecord& r) { return r.wall_seconds; }, 1) << " |\n";
+  const auto ba_ms = [](const RunRecord* r) {
+    return r ? num(r->local_ba.cpu_ms.median, 1) + " / " + num(r->local_ba.cpu_ms.p95, 1) : std::string("n/a");
+  };
+  const auto ba_aborted = [](const RunRecord* r) {
+    return r ? std::to_string(r->local_ba.aborted) + " / " + std::to_string(r->local_ba.runs) + " (" +
+                   num(100 * r->local_ba.aborted_share, 0) + " %)"
+             : std::string("n/a");
+  };
+  const auto ba_window = [](const RunRecord* r) {
+    return r ? num(r->local_ba.keyframes.median, 0) + " + " + num(r->local_ba.fixed_keyframes.median, 0) + " / " +
+                   num(r->local_ba.points.median, 0) + " / " + num(r->local_ba.observations.median, 0)
+             : std::string("n/a");
+  };
+  md << "| local BA CPU median / p95 [ms] | " << ba_ms(off) << " | " << ba_ms(on) << " |\n";
+  md << "| local BAs aborted / run | " << ba_aborted(off) << " | " << ba_aborted(on) << " |\n";
+  md << "| local BA window median (keyframes + fixed / points / observations) | " << ba_window(off) << " | "
+     << ba_window(on) << " |\n";
+  md << "| mapping CPU per frame [ms] | "
+     << cell(off, [](const RunRecord& r) { return r.local_ba.mapping_cpu_ms_per_frame; }, 1) << " | "
+     << cell(on, [](const RunRecord& r) { return r.local_ba.mapping_cpu_ms_per_frame; }, 1) << " |\n";
 }
 
 void runs_table(std::ostringstream& md, const SequenceResult& s, const fs::path& report_dir) {

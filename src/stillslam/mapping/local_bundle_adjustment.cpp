@@ -1,12 +1,15 @@
 #include "stillslam/mapping/local_bundle_adjustment.h"
 
+#include <algorithm>
 #include <unordered_map>
+#include <utility>
 
 #include "stillslam/map/ba_observations.h"
 
 namespace stillslam {
 
-LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
+LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf, const LocalWindowOptions& options) {
+  auto within = [](std::size_t n, int limit) { return limit <= 0 || n < static_cast<std::size_t>(limit); };
   LocalBundleAdjustmentProblem problem;
   BaKeyFrameIndex kf_index;
   auto add_keyframe = [&](KeyFrame* k, bool fixed) {
@@ -19,25 +22,49 @@ LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf) {
     problem.ba_keyframes.push_back(b);
   };
   add_keyframe(&kf, false);
-  for (KeyFrame* n : kf.covisibles()) {
+  for (KeyFrame* n : kf.covisibles()) {  // by decreasing weight
+    if (!within(problem.keyframes.size(), options.max_keyframes)) break;
     if (!n->is_bad()) add_keyframe(n, false);
   }
   const std::size_t num_local = problem.keyframes.size();
 
+  // Points keyframe by keyframe (the new one's first); a point's observations
+  // by keyframes outside the window count too, so the budget is an upper bound.
   std::unordered_map<const MapPoint*, std::size_t> point_index;
-  for (std::size_t k = 0; k < num_local; ++k) {
+  std::size_t observation_budget_used = 0;
+  bool full = false;
+  for (std::size_t k = 0; k < num_local && !full; ++k) {
     for (const MapPointPtr& mp : problem.keyframes[k]->map_points()) {
       if (!mp || mp->is_bad() || point_index.count(mp.get())) continue;
+      const std::size_t n_obs = mp->observations().size();
+      if (!within(problem.points.size(), options.max_points) ||
+          (options.max_observations > 0 &&
+           observation_budget_used + n_obs > static_cast<std::size_t>(options.max_observations))) {
+        full = true;
+        break;
+      }
+      observation_budget_used += n_obs;
       point_index.emplace(mp.get(), problem.points.size());
       problem.points.push_back(mp);
       problem.ba_points.push_back({mp->id(), mp->position()});
     }
   }
-  // Fixed keyframes: observe local points but are not in the window.
+  // Fixed keyframes: observe window points but are not in the window; those
+  // with the most such observations first.
+  std::unordered_map<KeyFrame*, int> outside;
   for (const MapPointPtr& mp : problem.points) {
     for (const auto& [k, idx] : mp->observations()) {
-      if (!k->is_bad()) add_keyframe(k, true);
+      if (!k->is_bad() && !kf_index.count(k)) ++outside[k];
     }
+  }
+  std::vector<std::pair<int, KeyFrame*>> fixed_candidates;
+  for (const auto& [k, n] : outside) fixed_candidates.emplace_back(n, k);
+  std::sort(fixed_candidates.begin(), fixed_candidates.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id() < b.second->id();
+  });
+  for (const auto& [n, k] : fixed_candidates) {
+    if (!within(problem.keyframes.size() - num_local, options.max_fixed_keyframes)) break;
+    add_keyframe(k, true);
   }
   if (num_local == 1 || std::all_of(problem.ba_keyframes.begin(), problem.ba_keyframes.end(),
                                     [](const BaKeyframe& b) { return !b.fixed; })) {

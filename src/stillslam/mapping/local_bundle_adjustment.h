@@ -1,14 +1,16 @@
 #pragma once
 // Local bundle adjustment around a keyframe, in three phases so the map lock
 // is not held while Ceres runs: gather (under the lock) copies the window —
-// the keyframe and its covisible keyframes, all their points, and as fixed
-// keyframes the others observing those points — into plain structs; solve
+// the keyframe and its covisible keyframes, their points, and as fixed
+// keyframes the others observing those points, each bounded by
+// LocalWindowOptions — into plain structs; solve
 // (no lock) runs bundle_adjust; apply (under the lock) writes poses and
 // points back and removes the observations flagged as outliers.
 #include <atomic>
 #include <vector>
 
 #include "stillslam/map/map.h"
+#include "stillslam/mapping/local_window_options.h"
 #include "stillslam/optimize/bundle_adjustment.h"
 
 namespace stillslam {
@@ -28,7 +30,7 @@ struct LocalBundleAdjustmentStats {
 };
 
 // Caller holds the map's update mutex.
-LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf);
+LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf, const LocalWindowOptions& options = {});
 // No lock needed.
 BundleAdjustmentResult solve_local_window(const PinholeCamera& camera, const LocalBundleAdjustmentProblem& problem,
                                           const BundleAdjustmentOptions& options);

@@ -1,6 +1,7 @@
 #include "stillslam/mapping/local_mapper.h"
 
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/mapping/keyframe_insertion.h"
 #include "stillslam/mapping/local_bundle_adjustment.h"
 
@@ -18,10 +19,9 @@ LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
 
 LocalMapper::~LocalMapper() { stop(); }
 
-void LocalMapper::insert_keyframe(KeyFramePtr kf) {
-  worker_.submit(std::move(kf));
-  abort_ba_ = true;
-}
+// A new keyframe does not interrupt the BA in progress: tracking asks for
+// that (interrupt_bundle_adjustment) only when it needs the keyframe at once.
+void LocalMapper::insert_keyframe(KeyFramePtr kf) { worker_.submit(std::move(kf)); }
 
 void LocalMapper::pause() {
   if (!worker_.threaded()) return;
@@ -42,6 +42,7 @@ LocalMapperStats LocalMapper::stats() const {
 
 void LocalMapper::process(const KeyFramePtr& kf) {
   Stopwatch total;
+  ThreadCpuStopwatch cpu;
   LocalMapperStats delta;
   delta.keyframes = 1;
   {
@@ -50,33 +51,50 @@ void LocalMapper::process(const KeyFramePtr& kf) {
     register_keyframe(*kf, recent_points_);
     delta.points_culled = cull_recent_points(recent_points_, kf->id(), options_.point_culling);
   }
-  // Not interruptible by a new keyframe in synchronous mode (determinism).
+  // Hurry (first triangulation neighbour only, no fusion, no BA) when tracking
+  // interrupted us or a backlog builds up; one keyframe waiting is normal
+  // (tracking queues one while we are busy). Never in synchronous mode
+  // (determinism).
   const bool threaded = options_.threaded;
-  auto new_keyframe_waiting = [this, threaded] { return threaded && worker_.queued() > 0; };
-  delta.points_created = create_new_points(*map_, *kf, recent_points_, options_.triangulation, new_keyframe_waiting);
+  auto hurry = [this, threaded] { return threaded && (abort_ba_.load() || worker_.queued() >= 2); };
+  delta.points_created = create_new_points(*map_, *kf, recent_points_, options_.triangulation, hurry);
 
-  if (!new_keyframe_waiting()) {
+  if (!hurry()) {
     std::lock_guard<std::mutex> lock(map_->update_mutex());
     fuse_with_neighbours(*kf, options_.fusion);
   }
-  if (!new_keyframe_waiting() && options_.enable_bundle_adjustment) {
+  const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry();
+  if (options_.enable_bundle_adjustment && !run_bundle_adjustment) delta.bundle_adjustments_skipped = 1;
+  if (run_bundle_adjustment) {
     LocalBundleAdjustmentProblem problem;
     {
       std::lock_guard<std::mutex> lock(map_->update_mutex());
-      if (map_->num_keyframes() > 2) problem = gather_local_window(*kf);
+      if (map_->num_keyframes() > 2) problem = gather_local_window(*kf, options_.window);
     }
     if (!problem.keyframes.empty()) {
       Stopwatch ba;
+      ThreadCpuStopwatch ba_cpu;
       BundleAdjustmentOptions ba_options = options_.bundle_adjustment;
       ba_options.abort = threaded ? &abort_ba_ : nullptr;
       const BundleAdjustmentResult result = solve_local_window(kf->setup().camera, problem, ba_options);
+      LocalBundleAdjustmentStats window;
       {
         std::lock_guard<std::mutex> lock(map_->update_mutex());
-        apply_local_window(problem, result);
+        window = apply_local_window(problem, result);
       }
       delta.bundle_adjustments = 1;
       delta.bundle_adjustments_aborted = result.aborted ? 1 : 0;
       delta.bundle_adjustment_ms = ba.elapsed_ms();
+      LocalBundleAdjustmentRecord record;
+      record.keyframes = window.keyframes;
+      record.fixed_keyframes = window.fixed_keyframes;
+      record.points = window.points;
+      record.observations = window.observations;
+      record.iterations = result.iterations;
+      record.ms = delta.bundle_adjustment_ms;
+      record.cpu_ms = ba_cpu.elapsed_ms();
+      record.aborted = result.aborted;
+      delta.bundle_adjustment_runs.push_back(record);
     }
   }
   std::vector<std::uint64_t> culled;
@@ -95,6 +113,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   }
   if (options_.on_keyframe_processed && keyframe_alive) options_.on_keyframe_processed(kf);
   delta.total_ms = total.elapsed_ms();
+  delta.cpu_ms = cpu.elapsed_ms();
   std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_ += delta;
 }

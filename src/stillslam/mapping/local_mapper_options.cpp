@@ -10,6 +10,7 @@ void LocalMapperOptions::check() const {
   fusion.check();
   keyframe_culling.check();
   bundle_adjustment.check();
+  window.check();
 }
 
 }  // namespace stillslam

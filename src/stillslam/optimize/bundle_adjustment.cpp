@@ -5,6 +5,7 @@
 #include <ceres/ordered_groups.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -62,14 +63,19 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   // Keyframes that take part in some pass; the others come back bit-exact.
   std::vector<bool> keyframe_moved(keyframes.size(), false);
   std::vector<bool> stereo(n_obs);
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n_obs);
+  // costs: the whole observation (or, split, its left-image part); right_costs:
+  // the right-image row of a split stereo observation.
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n_obs), right_costs(n_obs);
   for (std::size_t i = 0; i < n_obs; ++i) {
     const BaObservation& o = observations[i];
     stereo[i] = o.u_right >= 0 && k.bf > 0;
-    if (stereo[i]) {
+    if (stereo[i] && !options.split_stereo) {
       costs[i] = std::make_unique<StereoBaCost>(k, o.pixel, o.u_right, o.inv_sigma2);
     } else {
       costs[i] = std::make_unique<MonoBaCost>(k, o.pixel, o.inv_sigma2);
+    }
+    if (stereo[i] && options.split_stereo) {
+      right_costs[i] = std::make_unique<StereoRightBaCost>(k, o.u_right, o.inv_sigma2);
     }
   }
 
@@ -100,6 +106,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
 
   ceres::HuberLoss huber_mono(std::sqrt(options.chi2_mono));
   ceres::HuberLoss huber_stereo(std::sqrt(options.chi2_stereo));
+  ceres::HuberLoss huber_right(std::sqrt(kChi2OneDof95));
   Se3LeftManifold manifold;
   AbortCallback abort_callback(options.abort);
 
@@ -134,8 +141,10 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
         problem.AddParameterBlock(point, 3);
         ordering->AddElementToGroup(point, 0);
       }
-      ceres::LossFunction* loss = robust ? (stereo[i] ? &huber_stereo : &huber_mono) : nullptr;
+      const bool three_rows = stereo[i] && !options.split_stereo;
+      ceres::LossFunction* loss = robust ? (three_rows ? &huber_stereo : &huber_mono) : nullptr;
       problem.AddResidualBlock(costs[i].get(), loss, pose, point);
+      if (right_costs[i]) problem.AddResidualBlock(right_costs[i].get(), robust ? &huber_right : nullptr, pose, point);
     }
     if (problem.NumResidualBlocks() == 0) return;
 
@@ -149,12 +158,16 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
     }
     solver_options.linear_solver_ordering = ordering;
     solver_options.max_num_iterations = iterations;
+    solver_options.function_tolerance = options.function_tolerance;
+    if (options.max_seconds_per_pass > 0) solver_options.max_solver_time_in_seconds = options.max_seconds_per_pass;
     solver_options.num_threads = std::max(1, options.num_threads);
     solver_options.logging_type = ceres::SILENT;
     solver_options.minimizer_progress_to_stdout = false;
     if (options.abort) solver_options.callbacks.push_back(&abort_callback);
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
+    // Entry 0 of summary.iterations is the initial state.
+    result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);
     if (summary.termination_type == ceres::USER_FAILURE) result.aborted = true;
   };
 
@@ -186,6 +199,8 @@ void BundleAdjustmentOptions::check() const {
   above("BundleAdjustmentOptions.chi2_mono", chi2_mono, 0);
   above("BundleAdjustmentOptions.chi2_stereo", chi2_stereo, 0);
   at_least("BundleAdjustmentOptions.num_threads", num_threads, 1);
+  at_least("BundleAdjustmentOptions.function_tolerance", function_tolerance, 0.0);
+  at_least("BundleAdjustmentOptions.max_seconds_per_pass", max_seconds_per_pass, 0.0);
 }
 
 }  // namespace stillslam

@@ -50,6 +50,17 @@ struct BundleAdjustmentOptions {
   // Auto: dense Schur up to 40 free keyframes (fastest for local windows,
   // measured in bench/bench_optimize.cpp), sparse Schur (SuiteSparse) above.
   BaLinearSolver linear_solver = BaLinearSolver::Auto;
+  // Stereo/RGB-D observations as two 2-row residual blocks (the mono block and
+  // the right-image row): with every block the same size Ceres uses its
+  // fixed-size SchurEliminator<2, 3, 6>. false: one 3-row block, which sends
+  // any problem with mono and stereo observations (or stereo only: Ceres has
+  // no <3, 3, 6>) to the dynamic-size eliminator. bench/README.md has both.
+  bool split_stereo = true;
+  // A pass stops once an iteration lowers the cost by less than this
+  // fraction (Ceres' function_tolerance).
+  double function_tolerance = 1e-6;
+  // Wall-clock budget of each pass in seconds (0: none). Not deterministic.
+  double max_seconds_per_pass = 0;
   const std::atomic<bool>* abort = nullptr;  // stop early when set (checked every iteration)
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
@@ -62,6 +73,7 @@ struct BundleAdjustmentResult {
   double initial_cost = 0;  // 0.5 * sum of squared whitened errors (no robust loss)
   double final_cost = 0;    // same measure, inliers only
   bool aborted = false;
+  int iterations = 0;  // Ceres iterations over all passes
 };
 
 // Throws stillslam::Error when an observation indexes outside the vectors.

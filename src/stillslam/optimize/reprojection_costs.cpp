@@ -100,6 +100,30 @@ bool StereoBaCost::Evaluate(double const* const* parameters, double* residuals, 
   return true;
 }
 
+StereoRightBaCost::StereoRightBaCost(const Intrinsics& k, double u_right, double inv_sigma2)
+    : k_(k), u_right_(u_right), sqrt_info_(std::sqrt(inv_sigma2)) {}
+
+bool StereoRightBaCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+  const Projected pr = transform(parameters[0], Eigen::Map<const Eigen::Vector3d>(parameters[1]));
+  const Eigen::Vector3d& p = pr.p_cam;
+  if (p.z() < kMinCameraDepth) return false;
+  const double iz = 1.0 / p.z();
+  residuals[0] = sqrt_info_ * (k_.fx * p.x() * iz + k_.cx - k_.bf * iz - u_right_);
+  residuals[1] = 0;
+  if (jacobians && (jacobians[0] || jacobians[1])) {
+    // Row 3 of the stereo projection Jacobian, then a zero row.
+    const Eigen::Matrix<double, 3, 3> J3 = projection_jacobian<3>(k_, p, sqrt_info_);
+    Eigen::Matrix<double, 2, 3> Jp = Eigen::Matrix<double, 2, 3>::Zero();
+    Jp.row(0) = J3.row(2);
+    if (jacobians[0]) {
+      Eigen::Map<RowMat27> J(jacobians[0]);
+      fill_pose_jacobian<2>(Jp, p, J);
+    }
+    if (jacobians[1]) Eigen::Map<RowMat23>{jacobians[1]} = Jp * pr.R;
+  }
+  return true;
+}
+
 ReprojectionCheck check_reprojection(const Intrinsics& k, const Eigen::Isometry3d& T_cam_world,
                                      const Eigen::Vector3d& point_world, const Eigen::Vector2d& pixel,
                                      double u_right, double inv_sigma2) {

@@ -1,7 +1,11 @@
 #pragma once
 // Bundle-adjustment reprojection residuals with analytic Jacobians, whitened
 // by sqrt(inv_sigma2): mono [u - u_obs, v - v_obs] and stereo/RGB-D
-// [u - u_obs, v - v_obs, u_r - u_r_obs] with u_r = u - bf / z. Pose blocks use
+// [u - u_obs, v - v_obs, u_r - u_r_obs] with u_r = u - bf / z, either as one
+// 3-row block or split into the mono block plus [u_r - u_r_obs, 0]
+// (StereoRightBaCost): with every block 2 rows, 3-dof points and 6-dof poses
+// Ceres uses its fixed-size SchurEliminator<2, 3, 6>; mixed 2- and 3-row
+// blocks fall back to the much slower dynamic-size one. Pose blocks use
 // Se3LeftManifold (tangent Jacobian in the first 6 ambient columns). Evaluate
 // fails (step rejected) when the point is not in front of the camera.
 // (The pose-only costs live in pose_residuals.h.)
@@ -42,6 +46,19 @@ class StereoBaCost final : public ceres::SizedCostFunction<3, 7, 3> {
  private:
   Intrinsics k_;
   Eigen::Vector3d observation_;
+  double sqrt_info_;
+};
+
+// The right-image row of a stereo/RGB-D observation, padded with a zero row
+// to the 2 rows of MonoBaCost (see above).
+class StereoRightBaCost final : public ceres::SizedCostFunction<2, 7, 3> {
+ public:
+  StereoRightBaCost(const Intrinsics& k, double u_right, double inv_sigma2);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Intrinsics k_;
+  double u_right_;
   double sqrt_info_;
 };
 

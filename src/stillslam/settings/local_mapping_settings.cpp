@@ -12,6 +12,17 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations", {1, 1000});
   keys.integer("baIterationsAfterOutliers", ba.iterations_after_outliers,
                "BundleAdjustmentOptions.iterations_after_outliers", {0, 1000});
+  keys.flag("baSplitStereo", ba.split_stereo);
+  keys.number("baFunctionTolerance", ba.function_tolerance, "BundleAdjustmentOptions.function_tolerance", {0, 1});
+  keys.number("baMaxSeconds", ba.max_seconds_per_pass, "BundleAdjustmentOptions.max_seconds_per_pass", {0, 60});
+  // Window budget (0: no limit).
+  LocalWindowOptions& window = options.window;
+  keys.integer("windowKeyframes", window.max_keyframes, "LocalWindowOptions.max_keyframes", {0, 1000});
+  keys.integer("windowFixedKeyframes", window.max_fixed_keyframes, "LocalWindowOptions.max_fixed_keyframes",
+               {0, 1000});
+  keys.integer("windowPoints", window.max_points, "LocalWindowOptions.max_points", {0, 1000000});
+  keys.integer("windowObservations", window.max_observations, "LocalWindowOptions.max_observations",
+               {0, 5000000});
   // New points, fusion, culling.
   keys.count("triangulationNeighbours", options.triangulation.neighbours,
              "PointTriangulationOptions.neighbours", {1, 1000});

@@ -55,6 +55,47 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   return s;
 }
 
+LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames) {
+  LocalBundleAdjustmentSummary s;
+  s.runs = stats.bundle_adjustments;
+  s.aborted = stats.bundle_adjustments_aborted;
+  s.skipped = stats.bundle_adjustments_skipped;
+  s.aborted_share = s.runs ? static_cast<double>(s.aborted) / s.runs : 0;
+  std::vector<double> ms, cpu, kf, fixed, points, obs, it;
+  for (const LocalBundleAdjustmentRecord& r : stats.bundle_adjustment_runs) {
+    ms.push_back(r.ms);
+    cpu.push_back(r.cpu_ms);
+    kf.push_back(r.keyframes);
+    fixed.push_back(r.fixed_keyframes);
+    points.push_back(r.points);
+    obs.push_back(r.observations);
+    it.push_back(r.iterations);
+  }
+  s.ms = summarize_times(ms);
+  s.cpu_ms = summarize_times(cpu);
+  s.keyframes = summarize_times(kf);
+  s.fixed_keyframes = summarize_times(fixed);
+  s.points = summarize_times(points);
+  s.observations = summarize_times(obs);
+  s.iterations = summarize_times(it);
+  s.mapping_cpu_ms_per_frame = frames ? stats.cpu_ms / static_cast<double>(frames) : 0;
+  return s;
+}
+
+nlohmann::json to_json(const LocalBundleAdjustmentSummary& s) {
+  return {{"runs", s.runs},
+          {"aborted", s.aborted},
+          {"skipped", s.skipped},
+          {"aborted_share", s.aborted_share},
+          {"ms", to_json(s.ms)},
+          {"cpu_ms", to_json(s.cpu_ms)},
+          {"window_keyframes", to_json(s.keyframes)},
+          {"window_fixed_keyframes", to_json(s.fixed_keyframes)},
+          {"window_points", to_json(s.points)},
+          {"window_observations", to_json(s.observations)},
+          {"iterations", to_json(s.iterations)}};
+}
+
 nlohmann::json to_json(const FrameStats& f) {
   return {{"index", f.index},
           {"timestamp", f.timestamp},
@@ -112,15 +153,32 @@ nlohmann::json to_json(const RunSummary& s) {
           {"extraction_share", s.extraction_share}};
 }
 
-nlohmann::json to_json(const LocalMapperStats& s) {
+nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames) {
+  const LocalBundleAdjustmentSummary ba = summarize_local_bundle_adjustment(s, frames);
+  nlohmann::json runs = nlohmann::json::array();
+  for (const LocalBundleAdjustmentRecord& r : s.bundle_adjustment_runs) {
+    runs.push_back({{"keyframes", r.keyframes},
+                    {"fixed_keyframes", r.fixed_keyframes},
+                    {"points", r.points},
+                    {"observations", r.observations},
+                    {"iterations", r.iterations},
+                    {"ms", r.ms},
+                    {"cpu_ms", r.cpu_ms},
+                    {"aborted", r.aborted}});
+  }
   return {{"keyframes", s.keyframes},
           {"points_created", s.points_created},
           {"points_culled", s.points_culled},
           {"keyframes_culled", s.keyframes_culled},
           {"bundle_adjustments", s.bundle_adjustments},
           {"bundle_adjustments_aborted", s.bundle_adjustments_aborted},
+          {"bundle_adjustments_skipped", s.bundle_adjustments_skipped},
           {"bundle_adjustment_ms_total", s.bundle_adjustment_ms},
-          {"total_ms", s.total_ms}};
+          {"total_ms", s.total_ms},
+          {"cpu_ms_total", s.cpu_ms},
+          {"cpu_ms_per_frame", ba.mapping_cpu_ms_per_frame},
+          {"local_ba", to_json(ba)},
+          {"local_ba_runs", std::move(runs)}};
 }
 
 nlohmann::json to_json(const LoopCloserStats& s) {

@@ -28,10 +28,23 @@ struct RunSummary {
 };
 RunSummary summarize_run(const std::vector<FrameStats>& frames);
 
+// Local BA over a run (issue #21): time per BA (wall and mapping-thread CPU),
+// the aborted share, window sizes and Ceres iterations (each as median / p95 /
+// max), and the mapping thread's CPU time per input frame.
+struct LocalBundleAdjustmentSummary {
+  int runs = 0, aborted = 0, skipped = 0;
+  double aborted_share = 0;  // aborted / runs
+  TimingSummary ms, cpu_ms, keyframes, fixed_keyframes, points, observations, iterations;
+  double mapping_cpu_ms_per_frame = 0;
+};
+LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames);
+
 nlohmann::json to_json(const FrameStats& stats);
 nlohmann::json to_json(const TimingSummary& t);
 nlohmann::json to_json(const RunSummary& s);
-nlohmann::json to_json(const LocalMapperStats& s);
+// frames: the run's input frames (for the mapping CPU per frame; 0: not known, reported as 0).
+nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames = 0);
+nlohmann::json to_json(const LocalBundleAdjustmentSummary& s);
 nlohmann::json to_json(const LoopCloserStats& s);
 
 }  // namespace stillslam

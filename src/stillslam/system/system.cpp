@@ -8,11 +8,11 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/shipped_files.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
 #include "stillslam/system/snapshot_instances.h"
-#include "stillslam/tracking/thread_cpu_stopwatch.h"
 
 namespace stillslam {
 
@@ -128,7 +128,10 @@ void System::build_pipeline(const Settings& settings) {
   // keyframe goes on to loop closing and to merge detection.
   LocalMapperOptions mapping = settings.local_mapping;
   mapping.threaded = mode == WorkerMode::Threaded;
-  if (options_.deterministic) mapping.bundle_adjustment.num_threads = 1;
+  if (options_.deterministic) {
+    mapping.bundle_adjustment.num_threads = 1;
+    mapping.bundle_adjustment.max_seconds_per_pass = 0;  // a wall-clock budget would not repeat
+  }
   if (recognizer_) {
     LoopCloser* loop_closer = loop_closer_.get();
     WorkQueue<KeyFramePtr>* finished = merge_detector_ ? &finished_keyframes_ : nullptr;

@@ -6,7 +6,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/dynamic_mask.h"
-#include "stillslam/tracking/thread_cpu_stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 
 namespace stillslam {
 

@@ -6,6 +6,7 @@
 
 #include "stillslam/map/projection_search.h"
 #include "stillslam/tracking/depth_point_check.h"
+#include "stillslam/tracking/keyframe_admission.h"
 #include "stillslam/tracking/local_map.h"
 #include "stillslam/tracking/pose_refinement.h"
 
@@ -387,9 +388,13 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   const bool c1c = inliers < reference_matches * 0.25 || need_close;
   const bool c2 = (inliers < reference_matches * ratio || need_close) && inliers > 15;
   if (!((c1a || c1b || c1c) && c2)) return false;
-  if (idle) return true;
-  if (link_.interrupt_bundle_adjustment) link_.interrupt_bundle_adjustment();
-  return link_.queued_keyframes ? link_.queued_keyframes() < 3 : true;
+  const KeyFrameAdmission admission =
+      admit_keyframe(idle, inliers < reference_matches * 0.25, need_close,
+                     link_.queued_keyframes ? link_.queued_keyframes() : 0);
+  if (admission.interrupt_bundle_adjustment && link_.interrupt_bundle_adjustment) {
+    link_.interrupt_bundle_adjustment();
+  }
+  return admission.insert;
 }
 
 void Tracker::create_keyframe(Frame& frame) {
