@@ -25,7 +25,7 @@
 #include "frame_saver.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
-#include "run_viewer.h"
+#include "viewer/run_viewer.h"
 #include "signal_watcher.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"

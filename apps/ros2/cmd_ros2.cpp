@@ -20,6 +20,7 @@
 #include "stillslam/io/trajectory.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/system/run_summary.h"
+#include "viewer/run_viewer.h"
 
 namespace stillslam::apps {
 namespace {
@@ -35,6 +36,7 @@ struct Ros2Args {
   double pair_tolerance = 0.01;
   std::size_t max_frames = 0, path_max_poses = 10000;
   std::string map_frame = "map", camera_frame = "camera";
+  RunViewerArgs viewer;
 };
 
 ros2::NodeTopics input_topics(const Ros2Args& args, SensorType sensor) {
@@ -126,6 +128,12 @@ void run_node(const Ros2Args& args) {
   network.loopback_only = !args.network;
   network.check();
 
+  RunOptions viewer_hooks;
+  const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, viewer_hooks, std::nullopt);
+  options.pause = viewer_hooks.pause;
+  options.on_start = viewer_hooks.on_start;
+  options.on_end = viewer_hooks.on_end;
+
   SystemOptions system;
   system.use_segmentation = !args.no_segmentation;
   system.deterministic = args.deterministic;
@@ -193,6 +201,7 @@ void add_ros2_command(CLI::App& app) {
   cmd->add_option("--map-frame", args->map_frame, "frame id of the poses, path and TF parent (default map)");
   cmd->add_option("--camera-frame", args->camera_frame, "TF child and mask frame id (default camera)");
   cmd->add_option("--path-max-poses", args->path_max_poses, "newest poses kept in the published path (default 10000)");
+  add_viewer_options(*cmd, args->viewer);
   cmd->footer(
       "Publishes stillslam/pose (geometry_msgs/PoseStamped), stillslam/path (nav_msgs/Path), tf "
       "(tf2_msgs/TFMessage map->camera), stillslam/tracking_state (std_msgs/String) and stillslam/dynamic_mask "

@@ -31,6 +31,14 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
   Stopwatch wall;
   const FrameAssembler assembler(settings, options.rectified_input);
   System system(settings, assembler.sensor(), assembler.rectified_stereo(), system_options);
+  if (options.on_start) options.on_start(system);
+  // on_end runs however this function leaves, before `system` is destroyed.
+  struct EndNotice {
+    const std::function<void()>& on_end;
+    ~EndNotice() {
+      if (on_end) on_end();
+    }
+  } end_notice{options.on_end};
   FrameStamps stamps;
   Mailbox<SensorFrame> mailbox;
   {
@@ -45,6 +53,7 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
                  dds_topic_name(options.topics.second), to_string(assembler.sensor()));
     try {
       while (!options.max_frames || out.run.frames.size() < *options.max_frames) {
+        if (options.pause != nullptr && !options.pause->wait(&stop)) break;
         std::optional<SensorFrame> frame = mailbox.take();
         if (!frame) break;
         FrameStats stats = system.process(*frame);

@@ -21,6 +21,7 @@
 #include "dds.h"
 #include "stamp_pairer.h"
 #include "stillslam/system/dataset_runner.h"
+#include "stillslam/system/pause_gate.h"
 #include "stillslam/system/progress.h"
 
 namespace stillslam::ros2 {
@@ -47,6 +48,13 @@ struct LiveNodeOptions {
   std::optional<std::size_t> max_frames;
   std::filesystem::path save_map;
   std::optional<ProgressOptions> progress;  // a progress line on stderr while it runs
+  // The viewer (--viewer): waited on before each pair is taken (pairs that
+  // arrive while paused replace each other in the mailbox, counted as
+  // dropped); on_start gets the System once built, on_end runs before it is
+  // destroyed.
+  PauseGate* pause = nullptr;
+  std::function<void(const System&)> on_start;
+  std::function<void()> on_end;
   void check() const;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
-// `stillslam run --viewer [PORT] --viewer-host HOST`: starts the HTTP viewer
-// (apps/viewer/) before the run and hooks it into the run loop (publisher,
-// pause gate).
+// `--viewer [PORT] --viewer-host HOST` of `stillslam run` and `stillslam ros2`:
+// starts the HTTP viewer before the run and hooks it into the run loop
+// (publisher, pause gate).
 #include <CLI/CLI.hpp>
 
 #include <filesystem>

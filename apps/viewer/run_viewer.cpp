@@ -1,4 +1,4 @@
-#include "run_viewer.h"
+#include "viewer/run_viewer.h"
 
 #include <spdlog/spdlog.h>
 
