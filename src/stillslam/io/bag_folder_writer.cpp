@@ -1,5 +1,6 @@
 #include "stillslam/io/bag_folder_writer.h"
 
+#include <Eigen/Core>  // before opencv2/core/eigen.hpp
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgcodecs.hpp>
