@@ -8,6 +8,7 @@
 #include "snapshot_publisher.h"
 #include "stillslam/core/error.h"
 #include "stillslam/core/mailbox.h"
+#include "stillslam/core/scope_exit.h"
 #include "stillslam/core/stopwatch.h"
 
 namespace stillslam::ros2 {
@@ -32,13 +33,7 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
   const FrameAssembler assembler(settings, options.rectified_input);
   System system(settings, assembler.sensor(), assembler.rectified_stereo(), system_options);
   if (options.on_start) options.on_start(system);
-  // on_end runs however this function leaves, before `system` is destroyed.
-  struct EndNotice {
-    const std::function<void()>& on_end;
-    ~EndNotice() {
-      if (on_end) on_end();
-    }
-  } end_notice{options.on_end};
+  const ScopeExit end_notice(options.on_end);  // before `system` is destroyed, however this function leaves
   FrameStamps stamps;
   Mailbox<SensorFrame> mailbox;
   {

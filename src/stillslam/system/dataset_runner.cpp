@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/scope_exit.h"
 #include "stillslam/core/stopwatch.h"
 
 namespace stillslam {
@@ -49,13 +50,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     progress.emplace(system.publisher(), p);
   }
   if (options.on_start) options.on_start(system);
-  // on_end runs however this function leaves, before `system` is destroyed.
-  struct EndNotice {
-    const std::function<void()>& on_end;
-    ~EndNotice() {
-      if (on_end) on_end();
-    }
-  } end_notice{options.on_end};
+  const ScopeExit end_notice(options.on_end);  // before `system` is destroyed, however this function leaves
 
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
