@@ -9,9 +9,11 @@
 
 #include <cstdio>
 #include <iostream>
+#include <tuple>
 
 #include "commands.h"
 #include "frame_assembler.h"
+#include "image_topic_args.h"
 #include "live_node.h"
 #include "opencv_threads.h"
 #include "run_outputs.h"
@@ -29,7 +31,8 @@ namespace fs = std::filesystem;
 
 struct Ros2Args {
   std::string config, output = "ros2_output", vocabulary, qos = "default", save_map;
-  std::string left, right, rgb, depth, camera_info;
+  ros2::ImageTopicArgs images;
+  std::string camera_info;
   int domain = 0;
   bool network = false, force = false, no_segmentation = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false, rectified_input = false;
@@ -41,17 +44,7 @@ struct Ros2Args {
 
 ros2::NodeTopics input_topics(const Ros2Args& args, SensorType sensor) {
   ros2::NodeTopics topics;
-  const bool stereo_given = !args.left.empty() || !args.right.empty();
-  const bool rgbd_given = !args.rgb.empty() || !args.depth.empty();
-  if (sensor == SensorType::Stereo) {
-    if (rgbd_given) throw Error(args.config + " describes a stereo camera: give --left/--right, not --rgb/--depth");
-    topics.first = args.left.empty() ? "camera/left/image_raw" : args.left;
-    topics.second = args.right.empty() ? "camera/right/image_raw" : args.right;
-  } else {
-    if (stereo_given) throw Error(args.config + " describes an RGB-D camera: give --rgb/--depth, not --left/--right");
-    topics.first = args.rgb.empty() ? "camera/color/image_raw" : args.rgb;
-    topics.second = args.depth.empty() ? "camera/depth/image_raw" : args.depth;
-  }
+  std::tie(topics.first, topics.second) = ros2::image_topics(args.images, sensor, args.config);
   if (args.camera_info != "none") {
     topics.camera_info = args.camera_info.empty() ? ros2::camera_info_topic(topics.first) : args.camera_info;
   }
@@ -174,10 +167,7 @@ void add_ros2_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "ros2", "live ROS 2 node (Cyclone DDS): images in, camera pose, path, TF, tracking state and mask out");
   cmd->add_option("--config", args->config, "settings YAML (stereo or RGB-D)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--left", args->left, "left image topic (stereo; default camera/left/image_raw)");
-  cmd->add_option("--right", args->right, "right image topic (stereo; default camera/right/image_raw)");
-  cmd->add_option("--rgb", args->rgb, "colour image topic (RGB-D; default camera/color/image_raw)");
-  cmd->add_option("--depth", args->depth, "depth image topic, 16UC1 mm or 32FC1 m (RGB-D; default camera/depth/image_raw)");
+  ros2::add_image_topic_options(*cmd, args->images);
   cmd->add_option("--camera-info", args->camera_info, "CameraInfo topic checked once against the settings (default: the camera_info beside the left / colour "
                   "topic; 'none': not subscribed)");
   cmd->add_option("--output", args->output, "output folder (default ros2_output)");

@@ -18,6 +18,7 @@
 #include "commands.h"
 #include "dds.h"
 #include "image_message.h"
+#include "image_topic_args.h"
 #include "ros_time.h"
 #include "sensor_msgs/msg/CameraInfo.h"
 #include "sensor_msgs/msg/Image.h"
@@ -33,7 +34,8 @@ namespace {
 using std::chrono::milliseconds;
 
 struct ReplayArgs {
-  std::string folder, config, left, right, rgb, depth, state_topic = "stillslam/tracking_state";
+  ros2::ImageTopicArgs images;
+  std::string folder, config, state_topic = "stillslam/tracking_state";
   std::string frame_id = "camera";
   double rate = 1.0, wait_subscriber = 10, lockstep_timeout = 60;
   int domain = 0;
@@ -49,12 +51,7 @@ void replay(const ReplayArgs& args) {
   const Settings settings = load_settings(args.config);
   const auto dataset = open_dataset(args.folder, settings);
   const bool stereo = dataset->sensor() == SensorType::Stereo;
-  if (stereo && (!args.rgb.empty() || !args.depth.empty())) throw Error(args.folder + " is stereo: give --left/--right");
-  if (!stereo && (!args.left.empty() || !args.right.empty())) throw Error(args.folder + " is RGB-D: give --rgb/--depth");
-  const std::string first = stereo ? (args.left.empty() ? "camera/left/image_raw" : args.left)
-                                   : (args.rgb.empty() ? "camera/color/image_raw" : args.rgb);
-  const std::string second = stereo ? (args.right.empty() ? "camera/right/image_raw" : args.right)
-                                    : (args.depth.empty() ? "camera/depth/image_raw" : args.depth);
+  const auto [first, second] = ros2::image_topics(args.images, dataset->sensor(), args.folder);
   CameraCalibration camera = settings.camera;
   double baseline = 0;
   if (const auto rect = dataset->rectified_stereo()) {
@@ -141,10 +138,7 @@ void add_ros2_replay_command(CLI::App& app) {
   cmd->add_option("folder", args->folder, "dataset folder (TUM RGB-D, EuRoC, KITTI, simulated)")->required();
   cmd->add_option("--config", args->config, "settings YAML of the dataset")->required()->check(CLI::ExistingFile);
   cmd->add_option("--rate", args->rate, "speed factor: 0.5 = half speed (default 1)");
-  cmd->add_option("--left", args->left, "left image topic (stereo; default camera/left/image_raw)");
-  cmd->add_option("--right", args->right, "right image topic (stereo; default camera/right/image_raw)");
-  cmd->add_option("--rgb", args->rgb, "colour image topic (RGB-D; default camera/color/image_raw)");
-  cmd->add_option("--depth", args->depth, "depth image topic (RGB-D; default camera/depth/image_raw)");
+  ros2::add_image_topic_options(*cmd, args->images);
   cmd->add_option("--frame-id", args->frame_id, "header frame id of the images (default camera)");
   cmd->add_option("--domain", args->domain, "DDS domain (ROS_DOMAIN_ID), default 0");
   cmd->add_flag("--network", args->network, "every network interface (default: loopback only)");
