@@ -35,6 +35,7 @@
 #include "stillslam/io/dataset.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/io/trajectory.h"
+#include "stillslam/system/run_result_json.h"
 #include "stillslam/system/dataset_runner.h"
 #include "stillslam/system/run_summary.h"
 
@@ -154,51 +155,17 @@ void run(const RunArgs& args) {
   if (saver) saver->finish();
 
   const RunSummary summary = summarize_run(result.frames);
-  nlohmann::json stats;
+  nlohmann::json stats = run_result_json(result, features_removed);
   stats["config"] = fs::absolute(args.config).string();  // absolute: `stillslam report` reads it from anywhere
   stats["input"] = fs::absolute(args.input).string();
   stats["segmentation"] = options.system.use_segmentation && settings.segmentation.enabled;
   stats["deterministic"] = args.deterministic;
   stats["vocabulary"] = options.system.vocabulary_path.string();
   stats["loop_closing"] = !options.system.vocabulary_path.empty() && options.system.loop_closing;
-  stats["summary"] = to_json(summary);
-  stats["summary"]["wall_seconds"] = result.wall_seconds;
-  stats["summary"]["dropped_frames"] = result.dropped_frames;
-  stats["summary"]["skipped_frames"] = result.skipped_frames;
-  stats["summary"]["interrupted"] = result.interrupted;
-  stats["end"] = {{"reason", to_string(result.end)},
-                  {"signal", result.interrupted ? nlohmann::json(signal_name(signals.signal())) : nlohmann::json()},
-                  {"frames_processed", result.frames.size()},
-                  {"frames_in_input", result.frames_in_input}};
-  stats["summary"]["keyframes_in_map"] = result.keyframes.size();
-  stats["summary"]["map_points"] = result.map_points;
-  stats["summary"]["maps"] = result.maps;
-  stats["summary"]["new_maps"] = result.new_maps;
-  nlohmann::json merges = nlohmann::json::array();
-  for (const MapMergeStats& m : result.merges) {
-    merges.push_back({{"source_map", m.source_map}, {"target_map", m.target_map}, {"query_keyframe", m.query_id},
-                      {"recognized_keyframe", m.loop_id}, {"inliers", m.inliers}, {"fused_points", m.fused_points},
-                      {"moved_keyframes", m.moved_keyframes}, {"welding_keyframes", m.welding_keyframes}});
-  }
-  stats["map_merges"] = std::move(merges);
-  stats["local_mapping"] = to_json(result.mapper, result.frames.size());
-  stats["loop_closing_stats"] = to_json(result.loop_closer);
-  stats["summary"]["relocalizations"] = result.relocalizations;
-  if (result.error) stats["summary"]["error"] = *result.error;
+  stats["end"]["signal"] = result.interrupted ? nlohmann::json(signal_name(signals.signal())) : nlohmann::json();
   if (!args.load_map.empty()) stats["load_map"] = args.load_map;
   stats["localization_only"] = args.localization;
-  if (result.map_file) {
-    stats["map_file"] = {{"path", args.save_map}, {"bytes", result.map_file->bytes},
-                         {"maps", result.map_file->maps}, {"keyframes", result.map_file->keyframes},
-                         {"map_points", result.map_file->map_points}, {"save_ms", result.save_map_ms}};
-  }
-  if (result.map_file_error) stats["map_file_error"] = *result.map_file_error;
-  nlohmann::json frames = nlohmann::json::array();
-  for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
-  for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
-    frames[i]["features_removed"] = features_removed[i];  // by the dynamic mask (the snapshot's removed_keypoints)
-  }
-  stats["frames"] = std::move(frames);
+  if (result.map_file) stats["map_file"]["path"] = args.save_map;
 
   std::cout << "frames: " << summary.frames << ", tracked: " << summary.tracked << " ("
             << 100.0 * summary.tracked_ratio() << " %), keyframes: " << result.keyframes.size()

@@ -21,6 +21,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/settings/settings.h"
+#include "stillslam/system/run_result_json.h"
 #include "stillslam/system/run_summary.h"
 #include "viewer/run_viewer.h"
 
@@ -54,7 +55,7 @@ ros2::NodeTopics input_topics(const Ros2Args& args, SensorType sensor) {
 nlohmann::json node_stats(const Ros2Args& args, const ros2::LiveNodeOptions& options,
                           const ros2::LiveNodeResult& result, const SignalWatcher& signals, bool segmentation) {
   const RunResult& run = result.run;
-  nlohmann::json stats;
+  nlohmann::json stats = run_result_json(run, {});
   stats["config"] = args.config;
   stats["input"] = "ros2";
   stats["segmentation"] = segmentation;
@@ -68,27 +69,8 @@ nlohmann::json node_stats(const Ros2Args& args, const ros2::LiveNodeOptions& opt
                    {"dropped_stale", result.dropped},
                    {"published_poses", result.published_poses},
                    {"camera_info_messages", result.camera_info_messages}};
-  stats["summary"] = to_json(summarize_run(run.frames));
-  stats["summary"]["wall_seconds"] = run.wall_seconds;
-  stats["summary"]["dropped_frames"] = run.dropped_frames;
-  stats["summary"]["keyframes_in_map"] = run.keyframes.size();
-  stats["summary"]["map_points"] = run.map_points;
-  stats["summary"]["maps"] = run.maps;
-  stats["summary"]["relocalizations"] = run.relocalizations;
-  if (run.error) stats["summary"]["error"] = *run.error;
-  stats["end"] = {{"reason", to_string(run.end)},
-                  {"signal", run.interrupted ? nlohmann::json(signal_name(signals.signal())) : nlohmann::json()},
-                  {"frames_processed", run.frames.size()},
-                  {"frames_in_input", run.frames_in_input}};
-  stats["local_mapping"] = to_json(run.mapper);
-  stats["loop_closing_stats"] = to_json(run.loop_closer);
-  if (run.map_file) {
-    stats["map_file"] = {{"path", args.save_map}, {"bytes", run.map_file->bytes}, {"keyframes", run.map_file->keyframes}};
-  }
-  if (run.map_file_error) stats["map_file_error"] = *run.map_file_error;
-  nlohmann::json frames = nlohmann::json::array();
-  for (const FrameStats& f : run.frames) frames.push_back(to_json(f));
-  stats["frames"] = std::move(frames);
+  stats["end"]["signal"] = run.interrupted ? nlohmann::json(signal_name(signals.signal())) : nlohmann::json();
+  if (run.map_file) stats["map_file"]["path"] = args.save_map;
   return stats;
 }
 

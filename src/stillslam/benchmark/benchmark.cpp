@@ -14,6 +14,7 @@
 #include "stillslam/eval/metrics.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/settings/settings.h"
+#include "stillslam/system/run_result_json.h"
 #include "stillslam/system/dataset_runner.h"
 
 namespace stillslam {
@@ -38,23 +39,11 @@ void write_run_files(const fs::path& dir, const RunResult& result, const Benchma
   record.trajectory_file = dir / "trajectory.txt";
   write_trajectory(record.trajectory_file, result.trajectory);
   write_trajectory(dir / "keyframes.txt", result.keyframes);
-  nlohmann::json stats;
+  nlohmann::json stats = run_result_json(result, features_removed);
   stats["config"] = fs::absolute(input.config).string();
   stats["input"] = fs::absolute(input.folder).string();
   if (!input.groundtruth.empty()) stats["groundtruth"] = fs::absolute(input.groundtruth).string();
   stats["segmentation"] = record.segmentation;
-  stats["end"] = {{"reason", to_string(result.end)}, {"frames_processed", result.frames.size()},
-                  {"frames_in_input", result.frames_in_input}};
-  stats["summary"] = to_json(summarize_run(result.frames));
-  stats["summary"]["wall_seconds"] = result.wall_seconds;
-  if (result.error) stats["summary"]["error"] = *result.error;
-  stats["local_mapping"] = to_json(result.mapper, result.frames.size());
-  nlohmann::json frames = nlohmann::json::array();
-  for (const FrameStats& f : result.frames) frames.push_back(to_json(f));
-  for (std::size_t i = 0; i < frames.size() && i < features_removed.size(); ++i) {
-    frames[i]["features_removed"] = features_removed[i];
-  }
-  stats["frames"] = std::move(frames);
   write_text_file(dir / "stats.json", json_text(stats, 1) + "\n");  // whole or not at all; an Error names the cause
 }
 

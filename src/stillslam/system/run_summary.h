@@ -42,8 +42,8 @@ LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapper
 nlohmann::json to_json(const FrameStats& stats);
 nlohmann::json to_json(const TimingSummary& t);
 nlohmann::json to_json(const RunSummary& s);
-// frames: the run's input frames (for the mapping CPU per frame; 0: not known, reported as 0).
-nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames = 0);
+// frames: the frames the run processed (for the mapping CPU per frame).
+nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames);
 nlohmann::json to_json(const LocalBundleAdjustmentSummary& s);
 nlohmann::json to_json(const LoopCloserStats& s);
 
