@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -20,29 +21,28 @@ struct SimulateArgs {
   std::string extract_from;
   int cutouts = 12;
   std::vector<std::string> exclude, sitting;
-  std::string occlude;  // T[:D]
+  std::string occlude, crowd;  // T[:D]
 };
 
-// --occlude T[:D] -> occlude_at = T, occlude_seconds = D (default 1).
-void parse_occlude(const std::string& text, sim::SimulationOptions& o) {
+// "T[:D]" (--occlude, --crowd) -> at = T, seconds = D (unchanged when absent).
+void parse_time_window(const std::string& flag, const std::string& text, std::optional<double>& at,
+                       double& seconds) {
   if (text.empty()) return;
   const auto colon = text.find(':');
   try {
     std::size_t used = 0;
     const std::string t = text.substr(0, colon);
-    o.occlude_at = std::stod(t, &used);
+    at = std::stod(t, &used);
     if (used != t.size()) throw std::invalid_argument(t);
     if (colon != std::string::npos) {
       const std::string d = text.substr(colon + 1);
-      o.occlude_seconds = std::stod(d, &used);
+      seconds = std::stod(d, &used);
       if (used != d.size()) throw std::invalid_argument(d);
     }
   } catch (const std::exception&) {
-    throw Error("--occlude " + text + ": expected T or T:D in seconds, e.g. --occlude 12 or --occlude 12:1.5");
+    throw Error(flag + " " + text + ": expected T or T:D in seconds, e.g. " + flag + " 12 or " + flag + " 12:1.5");
   }
-  if (*o.occlude_at < 0 || o.occlude_seconds <= 0) {
-    throw Error("--occlude " + text + ": T must be >= 0 and D > 0 seconds");
-  }
+  if (*at < 0 || seconds <= 0) throw Error(flag + " " + text + ": T must be >= 0 and D > 0 seconds");
 }
 
 void run_simulate(const SimulateArgs& args) {
@@ -59,7 +59,8 @@ void run_simulate(const SimulateArgs& args) {
   }
   if (args.out.empty()) throw Error("simulate: --out DIR is required");
   sim::SimulationOptions options = args.options;
-  parse_occlude(args.occlude, options);
+  parse_time_window("--occlude", args.occlude, options.occlude_at, options.occlude_seconds);
+  parse_time_window("--crowd", args.crowd, options.crowd_at, options.crowd_seconds);
   if (options.stereo_gray) options.stereo = true;
   const auto s = sim::write_sequence(args.out, options, [](int done, int total) {
     if (done % 100 == 0 || done == total) spdlog::info("rendered {}/{} frames", done, total);
@@ -91,6 +92,12 @@ void add_simulate_command(CLI::App& app) {
                   "T[:D]: at T seconds a person walks right in front of the camera and hides (nearly) the whole "
                   "view for D seconds (default 1; walks in during the 0.5 s before, out during the 0.5 s after); "
                   "in the masks; dropped by --no-people");
+  cmd->add_flag("--moved-chair", o.moved_chair,
+                "A chair behind the desk is pushed 0.6 m aside over 2 s from 65% of the sequence");
+  cmd->add_option("--crowd", args->crowd,
+                  "T[:D]: a crowd walks across the view 0.9-1.3 m from the camera and covers most of it from T "
+                  "seconds for D seconds (default 3; walks in during the ~2 s before, out during those after); "
+                  "dropped by --no-people");
   cmd->add_flag("--no-people", o.no_people, "No moving things: static reference of the same sequence");
   cmd->add_option("--seed", o.seed, "Random seed (scene, people, noise)")->capture_default_str();
   cmd->add_flag("--overwrite", o.overwrite, "Replace a sequence already in --out");

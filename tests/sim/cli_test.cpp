@@ -55,4 +55,22 @@ TEST(SimulateCommand, BadTrajectoryFailsWithAClearMessage) {
   fs::remove(log);
 }
 
+TEST(SimulateCommand, BadCrowdOrOccluderWindowNamesTheFlag) {
+  if (!fs::exists(STILLSLAM_BINARY)) GTEST_SKIP() << STILLSLAM_BINARY << " not built";
+  const fs::path dir = fs::temp_directory_path() / ("stillslam_sim_cli_win_" + std::to_string(std::random_device{}()));
+  const fs::path log = dir.string() + ".log";
+  for (const std::string& window : {std::string("--crowd 3:x"), std::string("--crowd 3:0"), std::string("--occlude -1")}) {
+    EXPECT_EQ(run("--out " + dir.string() + " " + window + " --data-dir " STILLSLAM_SOURCE_DIR "/data", log), 1)
+        << window;
+    EXPECT_NE(read(log).find(window.substr(0, window.find(' '))), std::string::npos) << read(log);
+    EXPECT_FALSE(fs::exists(dir / "rgb.txt"));
+  }
+  // The still person on chair 1 and the pushed chair cannot both be there.
+  EXPECT_EQ(run("--out " + dir.string() + " --moved-chair --still-people 2 --data-dir " STILLSLAM_SOURCE_DIR "/data", log),
+            1);
+  EXPECT_NE(read(log).find("--still-people 1"), std::string::npos) << read(log);
+  fs::remove_all(dir);
+  fs::remove(log);
+}
+
 }  // namespace

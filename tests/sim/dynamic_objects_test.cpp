@@ -108,5 +108,57 @@ TEST(DynamicObjects, BoxIsDynamicOnlyWhileCarried) {
   EXPECT_GT(during[0].origin.z(), before[0].origin.z() + 0.1);  // lifted
 }
 
+TEST(DynamicObjects, ChairIsDynamicOnlyWhilePushedAndLeavesTheStaticScene) {
+  const std::vector<cv::Size> textures(4, cv::Size(64, 64));
+  std::vector<Quad> chair;
+  const std::vector<Quad> with_chair = build_static_scene(Eigen::Isometry3d::Identity(), textures, 5);
+  const std::vector<Quad> without = build_static_scene(Eigen::Isometry3d::Identity(), textures, 5, &chair);
+  ASSERT_EQ(chair.size(), 10u);  // seat and backrest, five faces each
+  ASSERT_EQ(without.size() + chair.size(), with_chair.size());
+  // The rest of the room is the same panels (same random draws).
+  EXPECT_EQ(without.back().texture, with_chair.back().texture);
+  EXPECT_TRUE(without.back().origin.isApprox(with_chair.back().origin));
+  for (const Quad& q : chair) EXPECT_NEAR(q.origin.x(), SceneLayout::chair_front(1).x(), 0.24);
+
+  DynamicObjectsOptions o;
+  o.walking = 0;
+  o.moved_box = true;
+  o.duration = 10;  // the chair moves from 6.5 s to 8.5 s
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), still_camera(Eigen::Vector3d::Zero(), 10), {},
+                           textures, 1, chair);
+  EXPECT_NEAR(dyn.chair_motion().first, 6.5, 1e-9);
+  EXPECT_NEAR(dyn.chair_motion().second, 8.5, 1e-9);
+  const Eigen::Isometry3d camera = look_at(Eigen::Vector3d::Zero(), SceneLayout::desk_centre());
+  const auto before = dyn.quads_at(6.4, camera);
+  const auto during = dyn.quads_at(7.5, camera);
+  const auto after = dyn.quads_at(9.0, camera);
+  ASSERT_EQ(before.size(), 5u + 10u);  // box then chair
+  EXPECT_EQ(before[5].dynamic_id, 0);
+  EXPECT_NE(during[5].dynamic_id, 0);
+  EXPECT_EQ(during[0].dynamic_id, 0);  // the box is not moving then
+  EXPECT_EQ(after[5].dynamic_id, 0);
+  EXPECT_NEAR((after[5].origin - before[5].origin).norm(), 0.6, 1e-9);    // pushed 0.6 m to the right
+  EXPECT_NEAR(after[5].origin.z(), before[5].origin.z(), 1e-12);          // not lifted
+
+  const std::vector<InstanceInfo> instances = dyn.instances();
+  ASSERT_EQ(instances.size(), 2u);
+  EXPECT_EQ(instances[0].kind, "moved_box");
+  EXPECT_EQ(instances[1].kind, "moved_chair");
+  EXPECT_EQ(instances[1].category, "chair");
+  EXPECT_EQ(instances[1].id, during[5].dynamic_id);
+}
+
+TEST(DynamicObjects, InstancesNameEveryIdAndWhetherItMoves) {
+  const DynamicObjects dyn = people_in_front(2, 1, 20, 9);
+  const std::vector<InstanceInfo> instances = dyn.instances();
+  ASSERT_EQ(instances.size(), 3u);
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    EXPECT_EQ(instances[i].id, dyn.people()[i].id);
+    EXPECT_EQ(instances[i].category, "person");
+    EXPECT_EQ(instances[i].moves, !dyn.people()[i].still);
+  }
+  EXPECT_EQ(instances[2].kind, "still_person");
+}
+
 }  // namespace
 }  // namespace stillslam::sim

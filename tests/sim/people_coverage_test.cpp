@@ -77,5 +77,58 @@ TEST(PeopleCoverage, OccluderHidesTheViewForItsTime) {
   EXPECT_EQ(cv::countNonZero(Simulator(o).render_frame(80).mask), 0);
 }
 
+TEST(PeopleCoverage, CrowdCoversMostOfTheViewForItsTime) {
+  for (const auto& [path, seed] : {std::pair{"walking_xyz", 0}, std::pair{"halfsphere", 0}, std::pair{"walking_xyz", 7},
+                                   std::pair{"rpy", 4}}) {
+    SimulationOptions o = small(path);
+    o.seed = seed;
+    o.people = 0;
+    o.frames = 300;
+    o.crowd_at = 3.0;
+    o.crowd_seconds = 2.0;
+    const Simulator sim(o);
+    const std::vector<CrowdMember>& crowd = sim.dynamic_objects().crowd();
+    ASSERT_GE(crowd.size(), 6u) << path;
+    EXPECT_EQ(cv::countNonZero(sim.render_frame(0).mask), 0) << path;  // not yet in view
+    double least = 1;
+    for (int frame = 90; frame <= 150; frame += 10) least = std::min(least, masked_fraction(sim.render_frame(frame)));
+    EXPECT_GT(least, 0.5) << path;  // 3.0-5.0 s: most of the view
+    EXPECT_EQ(cv::countNonZero(sim.render_frame(299).mask), 0) << path;  // 10 s: all gone
+    // Members are in the scene only while they walk.
+    for (const CrowdMember& m : crowd) {
+      EXPECT_TRUE(sim.dynamic_objects().crowd_foot(m, m.t_start + 0.1).has_value());
+      EXPECT_FALSE(sim.dynamic_objects().crowd_foot(m, m.t_start - 0.1).has_value());
+    }
+  }
+  SimulationOptions o = small("walking_xyz");
+  o.frames = 300;
+  o.crowd_at = 3.0;
+  o.no_people = true;  // the static reference has no crowd
+  EXPECT_EQ(cv::countNonZero(Simulator(o).render_frame(120).mask), 0);
+}
+
+// The moved box and the pushed chair are in view while they move (the chair
+// only in part of it on some paths: it starts behind the desk's clutter).
+TEST(PeopleCoverage, MovedBoxAndChairAreSeenWhileTheyMove) {
+  for (const char* path : {"walking_xyz", "halfsphere", "static"}) {
+    SimulationOptions o = small(path);
+    o.people = 0;
+    o.frames = 300;  // 10 s: the box moves over 4-6.5 s, the chair over 6.5-8.5 s
+    o.moved_object = true;
+    o.moved_chair = true;
+    const Simulator sim(o);
+    const std::vector<InstanceInfo> instances = sim.dynamic_objects().instances();
+    ASSERT_EQ(instances.size(), 2u);
+    auto share = [&](int frame, std::uint16_t id) {
+      return cv::countNonZero(sim.render_frame(frame).dynamic_ids == id) / double(o.width * o.height);
+    };
+    for (int frame : {130, 160, 190}) EXPECT_GT(share(frame, instances[0].id), 0.003) << path << " box " << frame;
+    int chair_frames = 0;
+    for (int frame = 200; frame <= 250; frame += 10) chair_frames += share(frame, instances[1].id) > 0.003;
+    EXPECT_GE(chair_frames, 3) << path;
+    EXPECT_EQ(share(100, instances[0].id) + share(270, instances[1].id), 0) << path;  // at rest: part of the room
+  }
+}
+
 }  // namespace
 }  // namespace stillslam::sim

@@ -67,7 +67,7 @@ TEST(SequenceWriter, WritesTumLayoutThatTheReadersLoad) {
   EXPECT_EQ(count_lines(dir.path / "rgb.txt", true), 6);
   EXPECT_EQ(count_lines(dir.path / "depth.txt", true), 6);
   EXPECT_EQ(count_lines(dir.path / "associations.txt", false), 6);
-  for (const char* sub : {"rgb", "depth", "masks"}) {
+  for (const char* sub : {"rgb", "depth", "masks", "instances"}) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir.path / sub), fs::directory_iterator{}), 6) << sub;
   }
   // First association line names files that exist, with equal stamps.
@@ -108,6 +108,23 @@ TEST(SequenceWriter, WritesTumLayoutThatTheReadersLoad) {
   cv::minMaxLoc(diff, nullptr, &max_diff);
   EXPECT_LT(max_diff, 1.1e-4);
 
+  // Instance ids: 16-bit, non-zero exactly where the mask is, each listed in instances.txt.
+  EXPECT_EQ(count_lines(dir.path / "instances.txt", true), 2);  // two walking people
+  const SimFrame first = sim.render_frame(0);  // `rgb` names frame 0
+  const cv::Mat ids = cv::imread((dir.path / "instances" / fs::path(rgb).filename()).string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(ids.type(), CV_16UC1);
+  EXPECT_EQ(cv::countNonZero(ids != first.dynamic_ids), 0);
+  EXPECT_EQ(cv::countNonZero(ids), cv::countNonZero(first.mask));
+  std::ifstream instances(dir.path / "instances.txt");
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(instances, line)) {
+    if (!line.empty() && line[0] != '#') rows.push_back(line);
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0], "1 walking_person person 1");
+  EXPECT_EQ(rows[1], "2 walking_person person 1");
+
   // Writing again into the same folder needs overwrite, and leaves no stale frames.
   EXPECT_THROW(write_sequence(dir.path, o), Error);
   o.overwrite = true;
@@ -131,7 +148,7 @@ TEST(SequenceWriter, SameSeedSameBytes) {
     EXPECT_EQ(read_bytes(e.path()), read_bytes(b.path / rel)) << rel;
     ++compared;
   }
-  EXPECT_EQ(compared, 3 * 3 + 5);  // rgb, depth, masks per frame + 4 text files + settings
+  EXPECT_EQ(compared, 3 * 4 + 6);  // rgb, depth, masks, instances per frame + 5 text files + settings
   // A different seed gives a different sequence.
   TempDir c("det_c");
   o.seed = 1;

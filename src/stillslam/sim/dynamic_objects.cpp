@@ -38,12 +38,41 @@ Eigen::Vector2d dawdle_offset(const WalkingPathPlanner& planner, const WalkingPa
   return Eigen::Vector2d::Zero();
 }
 
+// A person's cut-out standing at `foot` (scene frame), turned to face `cam`,
+// with the bob and sway of walking (or the slight sway of a still person).
+Quad billboard(int texture, double height, double aspect, V foot, const V& cam, double t, double phase, bool still,
+               std::uint16_t id) {
+  // Steps at ~1.8 Hz: the body rises twice per stride and sways sideways once.
+  const double step = still ? 0.3 : 1.8;
+  const double bob = (still ? 0.005 : 0.025) * std::abs(std::sin(kTwoPi * step * 0.5 * t + phase));
+  V to_cam = cam - foot;
+  to_cam.z() = 0;
+  if (to_cam.norm() < 1e-6) to_cam = V(0, -1, 0);
+  to_cam.normalize();
+  const V right = V::UnitZ().cross(to_cam);  // image right as the camera sees the billboard
+  foot += right * ((still ? 0.01 : 0.02) * std::sin(kTwoPi * step * 0.25 * t + phase));
+  const double w = height * aspect;
+  Quad q;
+  q.origin = foot - right * (w / 2) + V(0, 0, height + bob);
+  q.axis_u = right * w;
+  q.axis_v = V(0, 0, -height);
+  q.texture = texture;
+  q.alpha_tested = true;
+  q.dynamic_id = id;
+  return q;
+}
+
+// The chair is pushed 0.6 m to the right (away from the desk, towards the
+// cabinet) over 2 s from 65% of the sequence.
+constexpr double kChairStart = 0.65, kChairSeconds = 2.0;
+
 }  // namespace
 
 DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen::Isometry3d& T_world_scene,
                                const std::vector<TimedPose>& camera_path, const PeopleTextures& textures,
-                               const std::vector<cv::Size>& texture_sizes, std::uint64_t seed)
-    : options_(options), T_world_scene_(T_world_scene), textures_(textures) {
+                               const std::vector<cv::Size>& texture_sizes, std::uint64_t seed,
+                               std::vector<Quad> chair)
+    : options_(options), T_world_scene_(T_world_scene), textures_(textures), chair_(std::move(chair)) {
   PanelPainter rng(texture_sizes, seed * 31 + 7);
   std::uint16_t next_id = 1;
   const int n_cut = static_cast<int>(textures.walking.size());
@@ -121,7 +150,76 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen
     const V lo(0.3, 1.6, SceneLayout::kDeskTopZ);
     rng.box(lo, lo + V(0.28, 0.22, 0.2), box_);
   }
+  if (!chair_.empty()) chair_id_ = next_id++;
   if (options.occlude_at && textures.occluder >= 0) occluder_id_ = next_id++;
+  if (options.crowd_at && n_cut > 0) place_crowd(camera_path, next_id, rng);
+}
+
+void DynamicObjects::place_crowd(const std::vector<TimedPose>& camera_path, std::uint16_t& next_id,
+                                 PanelPainter& rng) {
+  // Where the camera is and looks (horizontally) in the middle of the crowd's time.
+  const double t_mid = *options_.crowd_at + 0.5 * options_.crowd_seconds;
+  const TimedPose* mid = &camera_path.front();
+  for (const TimedPose& tp : camera_path) {
+    if (std::abs(tp.t - t_mid) < std::abs(mid->t - t_mid)) mid = &tp;
+  }
+  const Eigen::Isometry3d T_scene_cam = T_world_scene_.inverse() * mid->T_world_cam;
+  const Eigen::Vector2d cam = T_scene_cam.translation().head<2>();
+  Eigen::Vector2d forward = T_scene_cam.linear().col(2).head<2>();
+  if (forward.norm() < 1e-6) forward = Eigen::Vector2d(0, 1);
+  forward.normalize();
+  const Eigen::Vector2d right(forward.y(), -forward.x());  // image right seen from above (z up)
+  // Two rows (0.9 and 1.3 m away) walking right to left at 1 m/s, 0.35 m
+  // apart along the walk: the lead reaches the left edge of the far row's
+  // view at crowd_at, the last leaves its right edge at crowd_at + crowd_seconds.
+  constexpr double kSpeed = 1.0, kSpacing = 0.35, kMargin = 0.6, kNear = 0.9, kFar = 1.3;
+  const double half_far = kFar * options_.half_view_tan;
+  const int count = static_cast<int>(std::ceil((2 * half_far + kSpeed * options_.crowd_seconds) / kSpacing)) + 1;
+  const int n_cut = static_cast<int>(textures_.walking.size());
+  for (int j = 0; j < count; ++j) {
+    CrowdMember m;
+    const int c = j % n_cut;
+    m.texture = textures_.walking[c];
+    m.aspect = static_cast<double>(textures_.walking_sizes[c].width) / textures_.walking_sizes[c].height;
+    m.height = rng.uniform(1.6, 1.85);
+    const double depth = j % 2 == 0 ? kNear : kFar;
+    const double half = depth * options_.half_view_tan + kMargin;
+    const Eigen::Vector2d centre = cam + depth * forward + rng.uniform(-0.1, 0.1) * forward;
+    m.a = centre + half * right;
+    m.b = centre - half * right;
+    m.speed = kSpeed * rng.uniform(0.95, 1.05);
+    // x_j(t) = -half_far - v (t - crowd_at) + j * spacing, and x_j(t_start) = +half.
+    m.t_start = *options_.crowd_at + (j * kSpacing - half_far - half) / kSpeed;
+    m.id = next_id++;
+    crowd_.push_back(m);
+  }
+}
+
+std::optional<Eigen::Vector3d> DynamicObjects::crowd_foot(const CrowdMember& m, double t) const {
+  const double len = (m.b - m.a).norm();
+  const double s = (t - m.t_start) * m.speed / len;
+  if (s < 0 || s > 1) return std::nullopt;
+  const Eigen::Vector2d xy = m.a + s * (m.b - m.a);
+  return V(xy.x(), xy.y(), SceneLayout::kFloorZ);
+}
+
+std::pair<double, double> DynamicObjects::chair_motion() const {
+  if (chair_.empty()) return {0.0, 0.0};
+  const double t0 = kChairStart * options_.duration;
+  return {t0, t0 + kChairSeconds};
+}
+
+std::vector<InstanceInfo> DynamicObjects::instances() const {
+  std::vector<InstanceInfo> out;
+  for (const PersonTrack& p : people_) {
+    out.push_back({p.id, p.still ? "still_person" : "walking_person", "person", !p.still});
+  }
+  if (box_id_ != 0) out.push_back({box_id_, "moved_box", "box", true});
+  if (chair_id_ != 0) out.push_back({chair_id_, "moved_chair", "chair", true});
+  if (occluder_id_ != 0) out.push_back({occluder_id_, "occluder", "person", true});
+  for (const CrowdMember& m : crowd_) out.push_back({m.id, "crowd_person", "person", true});
+  std::sort(out.begin(), out.end(), [](const InstanceInfo& a, const InstanceInfo& b) { return a.id < b.id; });
+  return out;
 }
 
 V DynamicObjects::person_foot(const PersonTrack& p, double t) const {
@@ -158,25 +256,12 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
   std::vector<Quad> out;
   const V cam = T_world_scene_.inverse() * T_world_cam.translation();
   for (const PersonTrack& p : people_) {
-    V foot = person_foot(p, t);
-    // Steps at ~1.8 Hz: the body rises twice per stride and sways sideways once.
-    const double step = p.still ? 0.3 : 1.8;
-    const double bob = (p.still ? 0.005 : 0.025) * std::abs(std::sin(kTwoPi * step * 0.5 * t + p.offset));
-    V to_cam = cam - foot;
-    to_cam.z() = 0;
-    if (to_cam.norm() < 1e-6) to_cam = V(0, -1, 0);
-    to_cam.normalize();
-    const V right = V::UnitZ().cross(to_cam);  // image right as the camera sees the billboard
-    foot += right * ((p.still ? 0.01 : 0.02) * std::sin(kTwoPi * step * 0.25 * t + p.offset));
-    const double w = p.height * p.aspect;
-    Quad q;
-    q.origin = foot - right * (w / 2) + V(0, 0, p.height + bob);
-    q.axis_u = right * w;
-    q.axis_v = V(0, 0, -p.height);
-    q.texture = p.texture;
-    q.alpha_tested = true;
-    q.dynamic_id = p.id;
-    out.push_back(q);
+    out.push_back(billboard(p.texture, p.height, p.aspect, person_foot(p, t), cam, t, p.offset, p.still, p.id));
+  }
+  for (const CrowdMember& m : crowd_) {
+    if (const std::optional<V> foot = crowd_foot(m, t)) {
+      out.push_back(billboard(m.texture, m.height, m.aspect, *foot, cam, t, m.t_start, false, m.id));
+    }
   }
   if (!box_.empty()) {
     // Picked up at 40% of the sequence, carried 0.8 m left and 0.4 m back over 2.5 s.
@@ -187,6 +272,18 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
     for (Quad q : box_) {
       q.origin += shift;
       q.dynamic_id = moving ? box_id_ : 0;
+      out.push_back(q);
+    }
+  }
+  if (!chair_.empty()) {
+    const auto [t0, t1] = chair_motion();
+    const double s = smooth((t - t0) / (t1 - t0));
+    const bool moving = t > t0 && t < t1;
+    // Pushed, not lifted: it slides 0.6 m and drifts 5 cm back and forth.
+    const V shift = V(0.6 * s, 0.05 * std::sin(std::numbers::pi * s), 0);
+    for (Quad q : chair_) {
+      q.origin += shift;
+      q.dynamic_id = moving ? chair_id_ : 0;
       out.push_back(q);
     }
   }

@@ -90,7 +90,8 @@ Eigen::Isometry3d scene_frame_for(const CameraMotion& motion, double seconds) {
 }
 
 std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
-                                     const std::vector<cv::Size>& texture_sizes, std::uint64_t seed) {
+                                     const std::vector<cv::Size>& texture_sizes, std::uint64_t seed,
+                                     std::vector<Quad>* movable_chair) {
   using L = SceneLayout;
   PanelPainter p(texture_sizes, seed);
   std::vector<Quad> q;
@@ -124,8 +125,13 @@ std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
   // Two chairs behind the desk: seat and backrest.
   for (int i = 0; i < 2; ++i) {
     const V c = L::chair_front(i);
+    const std::size_t first = q.size();
     p.box(V(c.x() - 0.23, c.y() + 0.02, f), V(c.x() + 0.23, c.y() + 0.46, f + 0.46), q);
     p.box(V(c.x() - 0.23, c.y() + 0.42, f + 0.46), V(c.x() + 0.23, c.y() + 0.47, f + 0.95), q);
+    if (i == 1 && movable_chair != nullptr) {
+      movable_chair->assign(q.begin() + static_cast<std::ptrdiff_t>(first), q.end());
+      q.resize(first);
+    }
   }
   // Clutter on the desk and the side table.
   for (int i = 0; i < 3; ++i) {

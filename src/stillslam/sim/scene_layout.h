@@ -51,8 +51,12 @@ struct SceneLayout {
 Eigen::Isometry3d scene_frame_for(const CameraMotion& motion, double seconds);
 
 // Photo panels picked from `texture_sizes` (index = texture id) by `seed`.
+// movable_chair: when given, chair 1 goes there (scene frame) instead of into
+// the static scene, for DynamicObjects to move; the other panels are the same
+// either way (the same random draws are made).
 std::vector<Quad> build_static_scene(const Eigen::Isometry3d& T_world_scene,
-                                     const std::vector<cv::Size>& texture_sizes, std::uint64_t seed);
+                                     const std::vector<cv::Size>& texture_sizes, std::uint64_t seed,
+                                     std::vector<Quad>* movable_chair = nullptr);
 
 // Helpers shared with the dynamic objects.
 class PanelPainter {

@@ -55,11 +55,12 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
       throw Error(dir.string() + " already holds a sequence; choose another --out folder or pass --overwrite");
     }
     // Only what a previous run wrote: stale frames would otherwise linger.
-    for (const fs::path& sub : {dir / "rgb", dir / "depth", dir / "masks", mav / "cam0" / "data", mav / "cam1" / "data"}) {
+    for (const fs::path& sub : {dir / "rgb", dir / "depth", dir / "masks", dir / "instances", mav / "cam0" / "data",
+                                mav / "cam1" / "data"}) {
       fs::remove_all(sub);
     }
   }
-  for (const char* sub : {"rgb", "depth", "masks"}) fs::create_directories(dir / sub);
+  for (const char* sub : {"rgb", "depth", "masks", "instances"}) fs::create_directories(dir / sub);
   if (o.stereo) {
     for (const char* cam : {"cam0", "cam1"}) fs::create_directories(mav / cam / "data");
     fs::create_directories(mav / "state_groundtruth_estimate0");
@@ -77,6 +78,15 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
     write_euroc_sensor_yaml(mav / "cam1" / "sensor.yaml", sim.camera(), o.baseline, o.fps, 1);
   }
 
+  {
+    auto instances_txt = open_for_writing(dir / "instances.txt");
+    instances_txt << "# stillslam simulate: what each id of instances/<t>.png stands for\n"
+                     "# moved objects (box, chair) carry their id only in the frames where they move\n"
+                     "# id kind class moves\n";
+    for (const InstanceInfo& i : sim.dynamic_objects().instances()) {
+      instances_txt << i.id << " " << i.kind << " " << i.category << " " << (i.moves ? 1 : 0) << "\n";
+    }
+  }
   auto rgb_txt = open_for_writing(dir / "rgb.txt");
   auto depth_txt = open_for_writing(dir / "depth.txt");
   auto assoc_txt = open_for_writing(dir / "associations.txt");
@@ -113,6 +123,7 @@ SequenceSummary write_sequence(const fs::path& dir, const SimulationOptions& opt
       write_png(dir / "rgb" / (t + ".png"), f.bgr);
       write_png(dir / "depth" / (t + ".png"), depth_png(f.depth));
       write_png(dir / "masks" / (t + ".png"), f.mask);
+      write_png(dir / "instances" / (t + ".png"), f.dynamic_ids);
       if (stereo) {
         cv::Mat left = f.bgr;
         if (gray) cv::cvtColor(f.bgr, left, cv::COLOR_BGR2GRAY);

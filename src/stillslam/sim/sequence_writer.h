@@ -4,6 +4,8 @@
 // TUM RGB-D layout (always):
 //   rgb/<t>.png (8-bit BGR), depth/<t>.png (16-bit, 5000 per metre, 0 = no data),
 //   masks/<t>.png (ground truth: 255 on moving people/objects, 0 static),
+//   instances/<t>.png (16-bit: the dynamic id of each pixel, 0 static) and
+//   instances.txt (per id: kind, class, whether it moves),
 //   rgb.txt, depth.txt, associations.txt (`t rgb/<t>.png t depth/<t>.png`),
 //   groundtruth.txt (TUM, T_world_cam of the colour/left camera),
 //   settings.yaml (stillslam / ORB-SLAM3 keys, Segmentation.model absolute).

@@ -25,12 +25,17 @@ struct SimulationOptions {
   int people = 2;              // walking people
   int still_people = 0;        // people standing (almost) still in view
   bool moved_object = false;   // a box on the desk is picked up and carried away
+  bool moved_chair = false;    // chair 1 behind the desk is pushed aside (DynamicObjects)
   bool no_people = false;      // drop every dynamic thing (static reference run)
   // A person walks right in front of the lens and hides (nearly) the whole view
   // from occlude_at for occlude_seconds (seconds since the first frame), e.g.
   // to test relocalization. In the ground-truth masks like everyone else.
   std::optional<double> occlude_at;
   double occlude_seconds = 1.0;
+  // A crowd walks across the view close to the camera and covers most of it
+  // from crowd_at for crowd_seconds (DynamicObjectsOptions::crowd_at).
+  std::optional<double> crowd_at;
+  double crowd_seconds = 3.0;
 
   bool stereo = false;         // also write a rectified EuRoC-layout stereo pair
   double baseline = 0.1;       // metres, stereo only

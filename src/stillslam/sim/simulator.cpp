@@ -115,7 +115,12 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
   const CameraCalibration camera = camera_from_options(options_);
   pick_occluder(assets.cutouts, people.walking, camera, people);
   renderer_ = std::make_unique<Renderer>(camera, std::move(textures));
-  static_quads_ = build_static_scene(T_world_scene_, texture_sizes, options_.seed);
+  if (options_.moved_chair && options_.still_people >= 2 && !options_.no_people) {
+    throw Error("sim: --moved-chair pushes the chair the second still person sits on; use --still-people 1 or 0");
+  }
+  std::vector<Quad> chair;
+  static_quads_ = build_static_scene(T_world_scene_, texture_sizes, options_.seed,
+                                     options_.moved_chair ? &chair : nullptr);
   DynamicObjectsOptions dyn;
   dyn.walking = options_.no_people ? 0 : std::max(0, options_.people);
   dyn.still = options_.no_people ? 0 : std::max(0, options_.still_people);
@@ -127,6 +132,11 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
     dyn.occlude_at = options_.occlude_at;
     dyn.occlude_seconds = options_.occlude_seconds;
   }
+  if (!options_.no_people && options_.crowd_at) {
+    if (options_.crowd_seconds <= 0) throw Error("--crowd T:D needs a positive duration D");
+    dyn.crowd_at = options_.crowd_at;
+    dyn.crowd_seconds = options_.crowd_seconds;
+  }
   // The camera path every 0.1 s: people walk across its lines of sight.
   std::vector<TimedPose> camera_path;
   const int samples = std::max(1, static_cast<int>(std::ceil(seconds / 0.1)));
@@ -135,7 +145,7 @@ Simulator::Simulator(SimulationOptions options) : options_(std::move(options)) {
     camera_path.push_back({t, motion_.pose_at(t)});
   }
   dynamic_ = std::make_unique<DynamicObjects>(dyn, T_world_scene_, camera_path, people, texture_sizes,
-                                              options_.seed);
+                                              options_.seed, std::move(chair));
 }
 
 Eigen::Isometry3d Simulator::T_left_right() const {
