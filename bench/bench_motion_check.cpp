@@ -1,5 +1,5 @@
-// How well the motion check (tracking/motion_residual.h, motion_evidence.h)
-// tells still instances from moving ones on a generated sequence, with the
+// How well the motion check (tracking/instance_motion_check.h) tells still
+// instances from moving ones on a generated sequence, with the
 // simulator's exact instance ids (instances/, instances.txt) standing for a
 // perfect segmenter and tracker: ORB features of frame k are matched to those
 // of frame k - span, each match's residual against the camera motion between
@@ -11,7 +11,7 @@
 //
 // Camera motion from groundtruth.txt, or from --poses (a TUM trajectory of a
 // run: only relative motion is used, so no alignment is needed), optionally
-// perturbed (--pose-noise-*: per frame pair, Gaussian, seeded). Reports per
+// perturbed (--pose-noise-*: per frame, Gaussian, seeded). Reports per
 // kind of instance (walking_person, still_person, moved_box, ...): frames in
 // which it had enough matches, the share of those in which the verdict was
 // "agrees" / "disagrees", and the share of frames it was kept as static once
@@ -20,7 +20,6 @@
 // each moving kind's features (hits per feature).
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -31,13 +30,11 @@
 #include <vector>
 
 #include "stillslam/core/error.h"
-#include "stillslam/features/descriptor_matcher.h"
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/settings/settings.h"
-#include "stillslam/tracking/motion_evidence.h"
-#include "stillslam/tracking/motion_residual.h"
+#include "stillslam/tracking/instance_motion_check.h"
 
 namespace fs = std::filesystem;
 using namespace stillslam;
@@ -70,13 +67,6 @@ std::map<int, Kind> read_instances(const fs::path& file) {
   return out;
 }
 
-struct FrameData {
-  OrbFeatures features;
-  std::vector<int> ids;        // instance id at each keypoint (0: static)
-  std::vector<float> depth;    // metres at each keypoint (0: none)
-  Eigen::Isometry3d T_world_cam;
-};
-
 struct KindTally {
   int frames = 0, agrees = 0, disagrees = 0;
   int past_window = 0, kept_static = 0;
@@ -106,9 +96,9 @@ int main(int argc, char** argv) {
   app.add_option("--span", span, "frames between the two views compared")->capture_default_str()->check(
       CLI::PositiveNumber);
   app.add_option("--poses", poses_file, "TUM trajectory to take the camera motion from (default: groundtruth.txt)");
-  app.add_option("--pose-noise-deg", noise_deg, "rotation noise per frame pair (degrees, std)");
-  app.add_option("--pose-noise-m", noise_m, "translation noise per frame pair (metres, std)");
-  app.add_option("--frames-person", evidence_options.default_frames, "evidence window (frames)")->capture_default_str();
+  app.add_option("--pose-noise-deg", noise_deg, "rotation noise per frame (degrees, std)");
+  app.add_option("--pose-noise-m", noise_m, "translation noise per frame (metres, std)");
+  app.add_option("--evidence-frames", evidence_options.default_frames, "evidence window (agreeing frames)")->capture_default_str();
   app.add_option("--max-frames", max_frames, "only the first N frames (0: all)");
   try {
     app.parse(argc, argv);
@@ -123,14 +113,18 @@ int main(int argc, char** argv) {
     const std::vector<TumPair> pairs = read_tum_associations(seq / "associations.txt");
     const fs::path pose_path = poses_file.empty() ? seq / "groundtruth.txt" : poses_file;
     const Trajectory poses = read_trajectory(pose_path);
-    MotionEvidence evidence(evidence_options);
+    InstanceMotionCheckOptions check_options;
+    check_options.span = span;
+    check_options.evidence = evidence_options;
+    InstanceMotionCheck check(camera, check_options);
     std::mt19937 rng(7);
     std::normal_distribution<double> gauss(0, 1);
     std::map<std::string, KindTally> tally;
     long bg_features = 0, bg_flagged = 0;
     std::vector<double> bg_medians;
     std::map<int, int> observed_frames;  // per instance: frames with enough matches so far
-    std::deque<FrameData> window;
+    std::map<std::uint32_t, std::string> categories;
+    for (const auto& [id, kind] : kinds) categories[static_cast<std::uint32_t>(id)] = kind.category;
     const int n = max_frames > 0 ? std::min<int>(max_frames, static_cast<int>(pairs.size()))
                                  : static_cast<int>(pairs.size());
     for (int k = 0; k < n; ++k) {
@@ -142,63 +136,45 @@ int main(int argc, char** argv) {
       if (gray.empty() || depth16.empty() || ids.type() != CV_16UC1) {
         throw Error("frame " + p.rgb_file + " of " + seq.string() + ": cannot read rgb/, depth/ or instances/");
       }
-      FrameData f;
-      f.features = extractor.extract(gray);
-      f.T_world_cam = pose_at(poses, p.rgb_time, pose_path);
-      for (const cv::KeyPoint& kp : f.features.keypoints) {
-        const int u = std::clamp(static_cast<int>(std::lround(kp.pt.x)), 0, gray.cols - 1);
-        const int v = std::clamp(static_cast<int>(std::lround(kp.pt.y)), 0, gray.rows - 1);
-        f.ids.push_back(ids.at<std::uint16_t>(v, u));
-        f.depth.push_back(static_cast<float>(depth16.at<std::uint16_t>(v, u) / settings.depth_map_factor));
-      }
-      window.push_back(std::move(f));
-      if (static_cast<int>(window.size()) > span + 1) window.pop_front();
-      if (static_cast<int>(window.size()) < span + 1) continue;
-      const FrameData& prev = window.front();
-      const FrameData& cur = window.back();
-      Eigen::Isometry3d T_cur_prev = cur.T_world_cam.inverse() * prev.T_world_cam;
+      const OrbFeatures features = extractor.extract(gray);
+      MotionCheckFrame f;
+      // Pose noise stands for tracking error: a random perturbation of each frame's pose.
+      Eigen::Isometry3d T_world_cam = pose_at(poses, p.rgb_time, pose_path);
       if (noise_deg > 0 || noise_m > 0) {
         const Eigen::Vector3d axis(gauss(rng), gauss(rng), gauss(rng));
-        const Eigen::Isometry3d noise =
-            Eigen::Translation3d(noise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng))) *
-            Eigen::AngleAxisd(noise_deg * M_PI / 180 * axis.norm() / std::sqrt(3.0), axis.normalized());
-        T_cur_prev = noise * T_cur_prev;
+        T_world_cam = T_world_cam *
+                      Eigen::Translation3d(noise_m * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng))) *
+                      Eigen::AngleAxisd(noise_deg * M_PI / 180 * axis.norm() / std::sqrt(3.0), axis.normalized());
       }
-      const std::vector<cv::DMatch> matches = match_descriptors(cur.features.descriptors, prev.features.descriptors);
-      std::vector<double> background;
-      std::map<int, std::vector<double>> per_instance;
-      for (const cv::DMatch& m : matches) {
-        const std::size_t c = static_cast<std::size_t>(m.queryIdx), q = static_cast<std::size_t>(m.trainIdx);
-        if (cur.ids[c] != prev.ids[q]) continue;  // across an instance border, or the object started moving
-        const Eigen::Vector2d prev_px(prev.features.keypoints[q].pt.x, prev.features.keypoints[q].pt.y);
-        const Eigen::Vector2d cur_px(cur.features.keypoints[c].pt.x, cur.features.keypoints[c].pt.y);
-        const double r = prev.depth[q] > 0 ? reprojection_residual(camera, T_cur_prev, prev_px, prev.depth[q], cur_px)
-                                           : epipolar_residual(camera, T_cur_prev, prev_px, cur_px);
-        (cur.ids[c] == 0 ? background : per_instance[cur.ids[c]]).push_back(r);
+      f.T_cam_world = T_world_cam.inverse();
+      f.descriptors = features.descriptors;
+      f.categories = categories;
+      for (const cv::KeyPoint& kp : features.keypoints) {
+        const int u = std::clamp(static_cast<int>(std::lround(kp.pt.x)), 0, gray.cols - 1);
+        const int v = std::clamp(static_cast<int>(std::lround(kp.pt.y)), 0, gray.rows - 1);
+        f.pixels.emplace_back(kp.pt.x, kp.pt.y);
+        f.instance.push_back(ids.at<std::uint16_t>(v, u));
+        f.depth.push_back(static_cast<float>(depth16.at<std::uint16_t>(v, u) / settings.depth_map_factor));
       }
-      std::vector<InstanceResiduals> instances;
-      for (auto& [id, residuals] : per_instance) {
-        const auto kind = kinds.find(id);
-        instances.push_back({id, kind != kinds.end() ? kind->second.category : "unknown", residuals});
-      }
-      const std::vector<InstanceMotionState> states = evidence.update(background, instances);
-      bg_medians.push_back(evidence.background_median());
-      const double move_px = std::max(evidence_options.moving_factor * evidence.background_median(),
+      const MotionCheckResult r = check.add(std::move(f));
+      if (!r.compared) continue;
+      bg_medians.push_back(r.background_median_px);
+      const double move_px = std::max(evidence_options.moving_factor * r.background_median_px,
                                       evidence_options.moving_floor_px);
-      bg_features += static_cast<long>(background.size());
-      for (double r : background) bg_flagged += r > move_px;
-      for (std::size_t i = 0; i < states.size(); ++i) {
-        const InstanceMotionState& s = states[i];
+      bg_features += static_cast<long>(r.background_residuals.size());
+      for (double x : r.background_residuals) bg_flagged += x > move_px;
+      for (const InstanceMotionState& s : r.instances) {
         const auto kind = kinds.find(s.id);
         KindTally& t = tally[kind != kinds.end() ? kind->second.kind : "unknown"];
-        t.features += static_cast<long>(instances[i].residuals.size());
-        for (double r : instances[i].residuals) t.flagged += r > move_px;
+        const std::vector<double>& residuals = r.residuals.at(static_cast<std::uint32_t>(s.id));
+        t.features += static_cast<long>(residuals.size());
+        for (double x : residuals) t.flagged += x > move_px;
         if (s.matches < evidence_options.min_matches) continue;
         ++t.frames;
         t.agrees += s.verdict == MotionVerdict::Agrees;
         t.disagrees += s.verdict == MotionVerdict::Disagrees;
         const int seen = ++observed_frames[s.id];
-        if (seen > evidence_options.frames_for(instances[i].category)) {
+        if (seen > evidence_options.frames_for(kind != kinds.end() ? kind->second.category : "")) {
           ++t.past_window;
           t.kept_static += s.is_static;
         }
