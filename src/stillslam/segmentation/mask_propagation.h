@@ -17,9 +17,14 @@
 
 namespace stillslam {
 
-struct MaskPropagationOptions {
-  // Undistorted pinhole intrinsics (segmentation/ does not depend on geometry/).
+// Undistorted pinhole intrinsics (segmentation/ does not depend on geometry/:
+// pass PinholeCamera's fx(), fy(), cx(), cy()).
+struct MaskPropagationCamera {
   double fx = 0, fy = 0, cx = 0, cy = 0;
+};
+
+// MaskPropagation.* settings.
+struct MaskPropagationOptions {
   // Motion used: 0 none (hold the old mask, margin only), 1 camera motion only,
   // 2 camera motion then optical flow (the default).
   int mode = 2;
@@ -69,8 +74,8 @@ struct PropagatedMasks {
 
 class MaskPropagator {
  public:
-  // Throws OptionError for bad options.
-  explicit MaskPropagator(MaskPropagationOptions options);
+  // Throws OptionError for bad options, stillslam::Error for fx or fy <= 0.
+  MaskPropagator(const MaskPropagationCamera& camera, MaskPropagationOptions options);
 
   // Starts from a fresh segmentation (replaces everything carried so far).
   // Throws stillslam::Error for an empty gray image, or instance / depth sizes
@@ -101,6 +106,7 @@ class MaskPropagator {
     std::vector<float> depth;         // their depth (0: unknown)
     float median_depth = 0;           // of the instance (0: unknown)
   };
+  MaskPropagationCamera camera_;
   MaskPropagationOptions options_;
   cv::Mat1b gray_;  // the last frame (fresh or propagated to)
   std::uint64_t frame_id_ = 0;
