@@ -109,6 +109,7 @@ class MaskPropagator {
   MaskPropagationCamera camera_;
   MaskPropagationOptions options_;
   cv::Mat1b gray_;  // the last frame (fresh or propagated to)
+  std::vector<cv::Mat> pyramid_;  // its LK pyramid (empty until needed)
   std::uint64_t frame_id_ = 0;
   std::uint64_t fresh_id_ = 0;
   std::optional<Eigen::Isometry3d> T_cam_world_;

@@ -1,0 +1,25 @@
+#include "stillslam/segmentation/mask_grow.h"
+
+#include <opencv2/imgproc.hpp>
+
+namespace stillslam {
+
+cv::Mat1b grow_mask(const cv::Mat1b& mask, int radius_px) {
+  if (radius_px <= 0 || mask.empty()) return mask.clone();
+  cv::Mat1b out(mask.size(), uchar{0});
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return out;
+  const cv::Rect frame(0, 0, mask.cols, mask.rows);
+  const cv::Rect roi =
+      cv::Rect(box.x - radius_px, box.y - radius_px, box.width + 2 * radius_px, box.height + 2 * radius_px) & frame;
+  cv::Mat1b outside;
+  cv::compare(mask(roi), 0, outside, cv::CMP_EQ);  // distanceTransform measures to the nearest zero
+  cv::Mat1f distance;
+  cv::distanceTransform(outside, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::Mat1b grown;
+  cv::compare(distance, static_cast<float>(radius_px) + 1e-3f, grown, cv::CMP_LE);
+  grown.copyTo(out(roi));
+  return out;
+}
+
+}  // namespace stillslam
