@@ -133,6 +133,25 @@ TEST(MaskPropagation, MovingBlobFollowedByFlowFrameToFrame) {
   }
 }
 
+TEST(MaskPropagation, BlobWalkingInFromTheBorderKeepsItsHiddenPart) {
+  MovingBlob scene;
+  scene.start = {300, 120};  // the right third is outside the frame
+  scene.velocity = {-8, 0};
+  MaskPropagator propagator(kCamera, {});
+  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  for (int k = 1; k <= 5; ++k) {
+    const PropagatedMasks p = propagator.propagate(k, scene.image(k), {}, std::nullopt);
+    ASSERT_EQ(p.instances.size(), 1u);
+    EXPECT_EQ(p.instances[0].motion, InstanceMotion::flow);
+    // The border column replicated outwards: all of the blob (recall 0.7 at frame 5
+    // without the extension), and a box where the ellipse closes.
+    const cv::Mat1b truth = scene.mask(k);
+    const double hit = cv::countNonZero(p.instances[0].mask & truth);
+    EXPECT_GT(hit / cv::countNonZero(truth), 0.97) << "frame " << k;
+    EXPECT_GT(hit / cv::countNonZero(p.instances[0].mask), 0.65) << "frame " << k;
+  }
+}
+
 TEST(MaskPropagation, FirstCallMaySpanSeveralFrames) {
   const MovingBlob scene;
   MaskPropagator propagator(kCamera, {});

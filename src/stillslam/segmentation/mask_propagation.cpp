@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
@@ -65,18 +66,34 @@ std::vector<cv::Point2f> features_in(const cv::Mat1b& gray, const cv::Mat1b& mas
 bool in_frame(cv::Point2f p, cv::Size s) { return p.x >= 0 && p.y >= 0 && p.x <= s.width - 1 && p.y <= s.height - 1; }
 
 // The mask moved by the 3x3 map H (pixel of the last frame -> pixel of this
-// one), warping only the part of the frame the moved mask can cover.
+// one), warping only the part of the frame the moved mask can cover. A mask
+// cut by an image border is taken to go on beyond it (its border pixels
+// replicated outwards), so a person walking into the view or brought in by
+// the camera motion keeps the part that was outside the last frame.
 cv::Mat1b warp_mask(const cv::Mat1b& mask, const cv::Matx33d& H) {
   cv::Mat1b out(mask.size(), uchar{0});
-  const cv::Rect src = cv::boundingRect(mask);
-  if (src.empty()) return out;
-  std::vector<cv::Point2f> corners{{float(src.x), float(src.y)},
-                                   {float(src.x + src.width), float(src.y)},
-                                   {float(src.x), float(src.y + src.height)},
-                                   {float(src.x + src.width), float(src.y + src.height)}};
-  std::vector<cv::Point2f> moved;
-  cv::perspectiveTransform(corners, moved, cv::Matx33f(H));
-  cv::Rect dst = cv::boundingRect(moved);
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return out;
+  const auto moved_box = [&](const cv::Rect& r) {
+    const std::vector<cv::Point2f> corners{{float(r.x), float(r.y)},
+                                           {float(r.x + r.width), float(r.y)},
+                                           {float(r.x), float(r.y + r.height)},
+                                           {float(r.x + r.width), float(r.y + r.height)}};
+    std::vector<cv::Point2f> moved;
+    cv::perspectiveTransform(corners, moved, cv::Matx33f(H));
+    float shift = 0;
+    for (std::size_t i = 0; i < 4; ++i) shift = std::max(shift, static_cast<float>(cv::norm(moved[i] - corners[i])));
+    return std::make_pair(cv::boundingRect(moved), shift);
+  };
+  // Padding beyond a touched border: as far as the map moves the box, at most one frame size.
+  const int pad = std::min(std::max(mask.cols, mask.rows), cvCeil(moved_box(box).second) + 2);
+  const int left = box.x == 0 ? pad : 0, top = box.y == 0 ? pad : 0;
+  const int right = box.x + box.width == mask.cols ? pad : 0, bottom = box.y + box.height == mask.rows ? pad : 0;
+  cv::Mat1b src_mask = mask(box);
+  if (left + top + right + bottom > 0)
+    cv::copyMakeBorder(mask(box), src_mask, top, bottom, left, right, cv::BORDER_REPLICATE);
+  const cv::Rect src(box.x - left, box.y - top, src_mask.cols, src_mask.rows);
+  cv::Rect dst = moved_box(src).first;
   dst = cv::Rect(dst.x - 1, dst.y - 1, dst.width + 2, dst.height + 2) & cv::Rect(0, 0, mask.cols, mask.rows);
   if (dst.empty()) return out;
   // Local coordinates: p_dst_local = T(-dst) H T(src) p_src_local.
@@ -86,9 +103,9 @@ cv::Mat1b warp_mask(const cv::Mat1b& mask, const cv::Matx33d& H) {
   cv::Mat1b part = out(dst);
   if (std::abs(L(2, 0)) < 1e-12 && std::abs(L(2, 1)) < 1e-12 && std::abs(L(2, 2) - 1) < 1e-12) {
     const cv::Matx23d A(L(0, 0), L(0, 1), L(0, 2), L(1, 0), L(1, 1), L(1, 2));
-    cv::warpAffine(mask(src), part, A, dst.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
+    cv::warpAffine(src_mask, part, A, dst.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
   } else {
-    cv::warpPerspective(mask(src), part, L, dst.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
+    cv::warpPerspective(src_mask, part, L, dst.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, 0);
   }
   return out;
 }
