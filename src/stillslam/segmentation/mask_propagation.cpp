@@ -27,17 +27,23 @@ float valid_depth(const cv::Mat1f& depth, cv::Point2f p, const MaskPropagationOp
 }
 
 // Median of the valid depths under the mask (0 when none): works for dense
-// RGB-D depth and for sparse stereo depths written at keypoint pixels.
+// RGB-D depth and for sparse stereo depths written at keypoint pixels. Every
+// 4th pixel (every 2nd row and column) first; all of them when that finds
+// fewer than 50 depths (sparse depth).
 float median_depth_in(const cv::Mat1b& mask, const cv::Mat1f& depth, const MaskPropagationOptions& o) {
   if (depth.empty()) return 0.f;
   const cv::Rect box = cv::boundingRect(mask);
   std::vector<float> z;
-  for (int y = box.y; y < box.y + box.height; ++y) {
-    const uchar* m = mask.ptr<uchar>(y);
-    const float* d = depth.ptr<float>(y);
-    for (int x = box.x; x < box.x + box.width; ++x) {
-      if (m[x] && std::isfinite(d[x]) && d[x] >= o.min_depth_m && d[x] <= o.max_depth_m) z.push_back(d[x]);
+  for (int stride : {2, 1}) {
+    z.clear();
+    for (int y = box.y; y < box.y + box.height; y += stride) {
+      const uchar* m = mask.ptr<uchar>(y);
+      const float* d = depth.ptr<float>(y);
+      for (int x = box.x; x < box.x + box.width; x += stride) {
+        if (m[x] && std::isfinite(d[x]) && d[x] >= o.min_depth_m && d[x] <= o.max_depth_m) z.push_back(d[x]);
+      }
     }
+    if (z.size() >= 50) break;
   }
   if (z.empty()) return 0.f;
   auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
@@ -162,7 +168,7 @@ void MaskPropagator::reset(SegmentedFrame fresh) {
     if (cv::countNonZero(m) == 0) continue;
     Track t;
     cv::compare(m, 0, t.mask, cv::CMP_NE);  // own copy, 0/255
-    t.median_depth = median_depth_in(t.mask, fresh.depth, options_);
+    if (options_.mode >= 1) t.median_depth = median_depth_in(t.mask, fresh.depth, options_);
     if (options_.mode == 2) {
       t.points = features_in(fresh.gray, t.mask, options_);
       t.depth.reserve(t.points.size());
@@ -342,8 +348,10 @@ PropagatedMasks MaskPropagator::propagate(std::uint64_t frame_id, const cv::Mat1
       t.points = std::move(points);
       t.depth = std::move(point_depth);
     }
-    const float z = median_depth_in(t.mask, depth, o);
-    t.median_depth = z > 0 ? z : median_z_new;
+    if (o.mode >= 1) {
+      const float z = median_depth_in(t.mask, depth, o);
+      t.median_depth = z > 0 ? z : median_z_new;
+    }
 
     inst.mask = t.mask;
     out.instances.push_back(std::move(inst));
