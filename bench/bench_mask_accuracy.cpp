@@ -74,6 +74,12 @@ int main(int argc, char** argv) {
   app.add_option("--margin-per-frame", prop.propagation.margin_px_per_frame, "propagation mode: margin growth per frame")
       ->capture_default_str();
   app.add_option("--max-margin", prop.propagation.max_margin_px, "propagation mode: margin cap")->capture_default_str();
+  app.add_option("--points", prop.propagation.points_per_instance, "propagation mode: flow points per instance")
+      ->capture_default_str();
+  app.add_option("--lk-window", prop.propagation.lk_window_px, "propagation mode: LK window (odd)")->capture_default_str();
+  app.add_option("--lk-levels", prop.propagation.lk_levels, "propagation mode: LK pyramid levels")->capture_default_str();
+  app.add_option("--fb-max-error", prop.propagation.fb_max_error_px, "propagation mode: forward-backward check (0: off)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

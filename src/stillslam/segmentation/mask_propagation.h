@@ -34,7 +34,7 @@ struct MaskPropagationOptions {
   int points_per_instance = 60;  // good features to track per instance
   int min_point_distance_px = 6; // between features
   int erode_px = 3;              // features are taken inside the mask eroded by this (border points see background)
-  int lk_window_px = 21;         // LK window side (odd)
+  int lk_window_px = 15;         // LK window side (odd)
   int lk_levels = 3;             // LK pyramid levels above the base
   double fb_max_error_px = 1.0;  // forward-backward check (0: off)
   int min_tracked_points = 5;    // fewer: the instance falls back to camera motion (or none)
