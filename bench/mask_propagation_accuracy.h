@@ -150,7 +150,7 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
   };
   const std::vector<Variant> variants{{"hold", 0, false}, {"flow-only", 2, false}, {"camera", 1, true}, {"camera+flow", 2, true}};
   std::vector<std::vector<PixelCounts>> counts(variants.size(), std::vector<PixelCounts>(b.max_age + 1));
-  std::vector<double> cpu_ms(variants.size(), 0.0);
+  std::vector<double> cpu_ms(variants.size(), 0.0), reset_ms(variants.size(), 0.0);
   std::vector<int> calls(variants.size(), 0);
   std::vector<std::map<InstanceMotion, int>> motions(variants.size());
 
@@ -165,8 +165,10 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
       MaskPropagationOptions o = b.propagation;
       o.mode = variants[v].mode;
       MaskPropagator propagator(camera, o);
+      const double t_reset = thread_cpu_ms();
       propagator.reset({.frame_id = k, .gray = f0.gray, .depth = f0.depth, .instances = fresh,
                         .T_cam_world = T_cam_world_of(gt[k])});
+      reset_ms[v] += thread_cpu_ms() - t_reset;
       counts[v][0].add(dynamic_mask(fresh, f0.gray.size(), propagator.margin_px(0)), f0.truth);
       for (int a = 1; a <= b.max_age; ++a) {
         const std::size_t j = k + static_cast<std::size_t>(a);
@@ -206,6 +208,9 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
   std::printf("cpu ms per propagate():");
   for (std::size_t v = 0; v < variants.size(); ++v)
     std::printf("  %s %.2f", variants[v].name, calls[v] ? cpu_ms[v] / calls[v] : 0.0);
+  std::printf("\ncpu ms per reset():");
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    std::printf("  %s %.2f", variants[v].name, starts ? reset_ms[v] / static_cast<double>(starts) : 0.0);
   std::printf("\ninstance motions (flow/camera/none):");
   for (std::size_t v = 0; v < variants.size(); ++v)
     std::printf("  %s %d/%d/%d", variants[v].name, motions[v][InstanceMotion::flow], motions[v][InstanceMotion::camera],

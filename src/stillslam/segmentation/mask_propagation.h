@@ -8,6 +8,8 @@
 // dilated by a margin that grows with the mask's age. After the first call,
 // propagation chains frame to frame (the last propagated masks and points).
 // Images are undistorted (rectified for stereo), so the camera is a pinhole.
+// A mask cut by the image border is taken to go on beyond it when warped.
+// Not thread-safe: one owner calls reset() and propagate().
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
