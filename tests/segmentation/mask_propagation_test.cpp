@@ -216,6 +216,27 @@ TEST(MaskPropagation, CameraMotionWithoutDepthOrPoseIsNotUsed) {
   EXPECT_EQ(propagator.propagate(1, gray1, depth1, std::nullopt).instances[0].motion, InstanceMotion::none);
 }
 
+TEST(MaskPropagation, SameInputsGiveTheSameMasks) {  // --deterministic runs rely on it
+  const TranslatingCamera scene;
+  std::vector<cv::Mat1b> first;
+  for (int run = 0; run < 2; ++run) {
+    cv::Mat1b gray, mask;
+    cv::Mat1f depth;
+    scene.render(0, gray, depth, mask);
+    MaskPropagator propagator(kCamera, {});
+    propagator.reset({.frame_id = 0, .gray = gray, .depth = depth, .instances = {mask}, .T_cam_world = scene.T_cam_world(0)});
+    for (int k = 1; k <= 3; ++k) {
+      scene.render(k, gray, depth, mask);
+      const PropagatedMasks p = propagator.propagate(k, gray, depth, scene.T_cam_world(k));
+      if (run == 0) {
+        first.push_back(p.union_mask);
+      } else {
+        EXPECT_EQ(cv::countNonZero(p.union_mask != first[k - 1]), 0) << "frame " << k;
+      }
+    }
+  }
+}
+
 TEST(MaskPropagation, MarginGrowsWithAge) {
   const MovingBlob scene;
   MaskPropagationOptions o;

@@ -68,7 +68,7 @@ struct PropagatedInstance {
 };
 
 struct PropagatedMasks {
-  std::vector<PropagatedInstance> instances;
+  std::vector<PropagatedInstance> instances;  // the fresh frame's non-empty instances, in order
   cv::Mat1b union_mask;  // union of the instances dilated by margin(age); frame-size (zeros when no instance)
   int age = 0;           // frame_id - the fresh frame's id
   int margin_px = 0;
