@@ -74,6 +74,9 @@ int main(int argc, char** argv) {
   app.add_option("--margin-per-frame", prop.propagation.margin_px_per_frame, "propagation mode: margin growth per frame")
       ->capture_default_str();
   app.add_option("--max-margin", prop.propagation.max_margin_px, "propagation mode: margin cap")->capture_default_str();
+  app.add_option("--frame-stride", prop.frame_stride, "propagation mode: every S-th frame only (S times faster motion)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 30));
   app.add_option("--points", prop.propagation.points_per_instance, "propagation mode: flow points per instance")
       ->capture_default_str();
   app.add_option("--lk-window", prop.propagation.lk_window_px, "propagation mode: LK window (odd)")->capture_default_str();

@@ -14,6 +14,8 @@
 // ground truth of j-1 and j-2, as the tracker's motion model predicts it before
 // tracking; after each frame the ground-truth pose is set (the tracked pose).
 // --depth sparse keeps depth only at FAST corners (what stereo keypoints give).
+// --frame-stride S uses every S-th frame only (S times faster motion per frame;
+// ages count those frames).
 #include <time.h>
 
 #include <Eigen/Geometry>
@@ -41,6 +43,7 @@ namespace stillslam::bench {
 struct PropagationBenchOptions {
   std::filesystem::path sequence;
   int max_age = 10;
+  int frame_stride = 1;        // every S-th frame only: S times faster motion per frame
   int step = 10;
   std::size_t max_starts = 0;  // 0: all
   std::string model;           // empty: exact instances
@@ -108,7 +111,7 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
   const auto frame = [&](std::size_t i) -> const Frame& {
     auto it = cache.find(i);
     if (it != cache.end()) return it->second;
-    while (!cache.empty() && cache.begin()->first + static_cast<std::size_t>(b.max_age) + 2 < i) cache.erase(cache.begin());
+    while (!cache.empty() && cache.begin()->first + static_cast<std::size_t>(b.max_age * b.frame_stride) + 2 < i) cache.erase(cache.begin());
     Frame f;
     f.bgr = cv::imread((seq / pairs[i].rgb_file).string(), cv::IMREAD_COLOR);
     const fs::path name = fs::path(pairs[i].rgb_file).filename();
@@ -155,7 +158,8 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
   std::vector<std::map<InstanceMotion, int>> motions(variants.size());
 
   std::size_t starts = 0;
-  for (std::size_t k = 2; k + static_cast<std::size_t>(b.max_age) < pairs.size(); k += static_cast<std::size_t>(b.step)) {
+  const auto S = static_cast<std::size_t>(b.frame_stride);
+  for (std::size_t k = 2 * S; k + static_cast<std::size_t>(b.max_age) * S < pairs.size(); k += static_cast<std::size_t>(b.step)) {
     if (b.max_starts > 0 && starts >= b.max_starts) break;
     ++starts;
     const Frame& f0 = frame(k);
@@ -171,15 +175,15 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
       reset_ms[v] += thread_cpu_ms() - t_reset;
       counts[v][0].add(dynamic_mask(fresh, f0.gray.size(), propagator.margin_px(0)), f0.truth);
       for (int a = 1; a <= b.max_age; ++a) {
-        const std::size_t j = k + static_cast<std::size_t>(a);
+        const std::size_t j = k + static_cast<std::size_t>(a) * S;
         const Frame& f = frame(j);
         std::optional<Eigen::Isometry3d> predicted;
         if (variants[v].poses) {
-          const Eigen::Isometry3d T1 = T_cam_world_of(gt[j - 1]), T2 = T_cam_world_of(gt[j - 2]);
+          const Eigen::Isometry3d T1 = T_cam_world_of(gt[j - S]), T2 = T_cam_world_of(gt[j - 2 * S]);
           predicted = (T1 * T2.inverse()) * T1;
         }
         const double t0 = thread_cpu_ms();
-        const PropagatedMasks p = propagator.propagate(j, f.gray, f.depth, predicted);
+        const PropagatedMasks p = propagator.propagate(k + static_cast<std::size_t>(a), f.gray, f.depth, predicted);  // virtual frame ids: age a
         cpu_ms[v] += thread_cpu_ms() - t0;
         ++calls[v];
         if (variants[v].poses) propagator.set_last_pose(T_cam_world_of(gt[j]));
@@ -190,8 +194,8 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
   }
 
   const MaskPropagationOptions& o = b.propagation;
-  std::printf("%s: %zu start frames (every %d-th), ages 1..%d, fresh masks: %s, depth: %s, margin %d px + %.2f px/frame (max %d)\n",
-              seq.string().c_str(), starts, b.step, b.max_age, b.model.empty() ? "exact" : b.model.c_str(),
+  std::printf("%s: %zu start frames (every %d-th), ages 1..%d, frame stride %d, fresh masks: %s, depth: %s, margin %d px + %.2f px/frame (max %d)\n",
+              seq.string().c_str(), starts, b.step, b.max_age, b.frame_stride, b.model.empty() ? "exact" : b.model.c_str(),
               b.depth.c_str(), o.margin_px, o.margin_px_per_frame, o.max_margin_px);
   std::printf("%4s", "age");
   for (const Variant& v : variants) std::printf(" | %-11s rec  prec  rec/fresh", v.name);
