@@ -22,7 +22,7 @@ int keyframes_made(KeyFrameBudget& budget, double seconds) {
 }
 
 TEST(KeyFrameBudget, NoBudgetAllowsEveryFrame) {
-  KeyFrameBudget budget;
+  KeyFrameBudget budget({0, 2});
   EXPECT_EQ(keyframes_made(budget, 2), 60);
 }
 
