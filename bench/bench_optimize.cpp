@@ -169,6 +169,40 @@ BENCHMARK(BM_LocalBundleAdjustment)
     ->Args({20, 1400, 1, 0, 1, 3})
 ->Unit(benchmark::kMillisecond);
 
+// Global BA as loop closing runs it (LoopCloserOptions::
+// default_global_bundle_adjustment: 10 robust iterations, no outlier pass,
+// function tolerance 1e-6, sparse Schur above 40 free keyframes) on a larger
+// scene. Args: keyframes, points, depth (as above), split stereo (0/1).
+void BM_GlobalBundleAdjustment(benchmark::State& state) {
+  const PinholeCamera cam(calibration(), 40.0);
+  const BaScene s = ba_scene(cam, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                            static_cast<Depth>(state.range(2)));
+  BundleAdjustmentOptions options;
+  options.iterations = 10;
+  options.outlier_rounds = 0;
+  options.split_stereo = state.range(3) != 0;
+  double position_error = 0;
+  int iterations = 0;
+  for (auto _ : state) {
+    const BundleAdjustmentResult r = bundle_adjust(cam, s.keyframes, s.points, s.observations, options);
+    iterations = r.iterations;
+    position_error = 0;
+    for (std::size_t k = 0; k < r.T_cam_world.size(); ++k) {
+      position_error += (r.T_cam_world[k].inverse().translation() - s.truth[k].inverse().translation()).norm();
+    }
+    benchmark::DoNotOptimize(r.points);
+  }
+  state.counters["observations"] = static_cast<double>(s.observations.size());
+  state.counters["iterations"] = iterations;
+  state.counters["mean_kf_err_mm"] = 1000 * position_error / static_cast<double>(s.keyframes.size());
+}
+BENCHMARK(BM_GlobalBundleAdjustment)
+    ->Args({60, 2500, 2, 0})
+    ->Args({60, 2500, 2, 1})
+    ->Args({60, 2500, 1, 0})
+    ->Args({60, 2500, 1, 1})
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace stillslam
 

@@ -2,7 +2,9 @@
 // and the keyframe-processed / keyframe-culled callbacks.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <mutex>
+#include <thread>
 
 #include "map/map_builder.h"
 #include "stillslam/mapping/local_mapper.h"
@@ -98,6 +100,91 @@ TEST(LocalMapper, OneWaitingKeyframeKeepsTheBundleAdjustmentABacklogSkipsIt) {
     EXPECT_GT(stats.bundle_adjustment_runs[0].observations, 0);
     EXPECT_GT(stats.cpu_ms, 0);
   }
+}
+
+// Loop closing pauses the mapper while its BA runs (the hook pauses from
+// another thread and returns once the pause is requested, before the solve):
+// by default the BA finishes and the pause waits for it; with
+// pause_aborts_bundle_adjustment the BA is aborted and counted as the pause's.
+TEST(LocalMapper, PauseWaitsForTheRunningBundleAdjustmentUnlessSetToAbortIt) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  for (bool aborts : {false, true}) {
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, true);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    o.pause_aborts_bundle_adjustment = aborts;
+    LocalMapper* mapper_ptr = nullptr;
+    std::thread pauser;
+    std::atomic<bool> hooked{false};
+    o.on_bundle_adjustment_start = [&] {
+      if (hooked) return;
+      pauser = std::thread([&] { mapper_ptr->pause(); });
+      while (!mapper_ptr->paused()) std::this_thread::yield();
+      hooked = true;
+    };
+    LocalMapper mapper(builder.map(), o);
+    mapper_ptr = &mapper;
+    mapper.insert_keyframe(kfs[4]);
+    while (!hooked) std::this_thread::yield();
+    pauser.join();  // pause() returns once the keyframe is done
+    const LocalMapperStats stats = mapper.stats();
+    EXPECT_EQ(stats.keyframes, 1) << aborts;
+    ASSERT_EQ(stats.bundle_adjustments, 1) << aborts;
+    EXPECT_EQ(stats.bundle_adjustments_aborted, aborts ? 1 : 0);
+    EXPECT_EQ(stats.bundle_adjustments_aborted_by_pause, aborts ? 1 : 0);
+    EXPECT_EQ(stats.bundle_adjustments_aborted_by_tracking, 0);
+    ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u);
+    EXPECT_EQ(stats.bundle_adjustment_runs[0].abort_cause,
+              aborts ? BundleAdjustmentAbort::Pause : BundleAdjustmentAbort::None);
+    if (aborts) {
+      EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, 0);
+    } else {
+      EXPECT_GT(stats.bundle_adjustment_runs[0].iterations, 0);
+    }
+    mapper.resume();
+    mapper.stop();
+  }
+}
+
+// Tracking's interrupt aborts the running BA and is counted as its cause; a
+// pause that comes after it does not change the cause.
+TEST(LocalMapper, TrackingInterruptIsCountedAsTheAbortCause) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  Recorded rec;
+  LocalMapperOptions o = options_recording(rec, true);
+  o.enable_bundle_adjustment = true;
+  o.enable_keyframe_culling = false;
+  o.pause_aborts_bundle_adjustment = true;
+  LocalMapper* mapper_ptr = nullptr;
+  std::thread pauser;
+  std::atomic<bool> hooked{false};
+  o.on_bundle_adjustment_start = [&] {
+    mapper_ptr->interrupt_bundle_adjustment();
+    pauser = std::thread([&] { mapper_ptr->pause(); });
+    while (!mapper_ptr->paused()) std::this_thread::yield();
+    hooked = true;
+  };
+  LocalMapper mapper(builder.map(), o);
+  mapper_ptr = &mapper;
+  mapper.insert_keyframe(kfs[4]);
+  while (!hooked) std::this_thread::yield();
+  pauser.join();
+  const LocalMapperStats stats = mapper.stats();
+  ASSERT_EQ(stats.bundle_adjustments, 1);
+  EXPECT_EQ(stats.bundle_adjustments_aborted, 1);
+  EXPECT_EQ(stats.bundle_adjustments_aborted_by_tracking, 1);
+  EXPECT_EQ(stats.bundle_adjustments_aborted_by_pause, 0);
+  ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u);
+  EXPECT_EQ(stats.bundle_adjustment_runs[0].abort_cause, BundleAdjustmentAbort::Tracking);
+  mapper.resume();
+  mapper.stop();
 }
 
 }  // namespace

@@ -86,7 +86,7 @@ RunRecord run_once(const Settings& settings, const Dataset& dataset, const Bench
   record.tracker_ms = summary.tracking_ms;
   record.segmentation_ms = summarize_positive(result.frames, [](const FrameStats& f) { return f.build.segmentation_ms; });
   record.segmentation_wait_ms = summary.segmentation_wait_ms;
-  record.local_ba = summarize_local_bundle_adjustment(result.mapper, result.frames.size());
+  record.local_ba = summarize_local_bundle_adjustment(result.mapper, result.frames.size(), sequence_seconds(result.frames));
   record.trajectory = result.trajectory;
   if (!run_dir.empty()) {
     try {

@@ -131,7 +131,9 @@ void timing_table(std::ostringstream& md, const SequenceResult& s) {
   };
   const auto ba_aborted = [](const RunRecord* r) {
     return r ? std::to_string(r->local_ba.aborted) + " / " + std::to_string(r->local_ba.runs) + " (" +
-                   num(100 * r->local_ba.aborted_share, 0) + " %)"
+                   num(100 * r->local_ba.aborted_share, 0) + " %; tracking " +
+                   std::to_string(r->local_ba.aborted_by_tracking) + ", pause " +
+                   std::to_string(r->local_ba.aborted_by_pause) + ")"
              : std::string("n/a");
   };
   const auto ba_window = [](const RunRecord* r) {
@@ -146,6 +148,9 @@ void timing_table(std::ostringstream& md, const SequenceResult& s) {
   md << "| mapping CPU per frame [ms] | "
      << cell(off, [](const RunRecord& r) { return r.local_ba.mapping_cpu_ms_per_frame; }, 1) << " | "
      << cell(on, [](const RunRecord& r) { return r.local_ba.mapping_cpu_ms_per_frame; }, 1) << " |\n";
+  md << "| keyframes mapped per second of input | "
+     << cell(off, [](const RunRecord& r) { return r.local_ba.keyframes_per_second; }, 1) << " | "
+     << cell(on, [](const RunRecord& r) { return r.local_ba.keyframes_per_second; }, 1) << " |\n";
 }
 
 void runs_table(std::ostringstream& md, const SequenceResult& s, const fs::path& report_dir) {

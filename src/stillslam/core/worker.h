@@ -116,6 +116,11 @@ class Worker {
   }
 
   bool threaded() const { return mode_ == WorkerMode::Threaded; }
+  // pause() was called and resume() not yet.
+  bool paused() const {
+    std::lock_guard lock(state_mutex_);
+    return paused_;
+  }
   // Submitted and not started: also an item the thread has taken from the
   // queue but holds while paused, so a paused worker reports what waits.
   std::size_t queued() const {

@@ -12,6 +12,7 @@ LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
       options_(std::move(options)),
       worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous, [this](KeyFramePtr& kf) {
         abort_ba_ = false;
+        abort_cause_ = BundleAdjustmentAbort::None;
         process(kf);
       }) {
   options_.check();
@@ -23,9 +24,15 @@ LocalMapper::~LocalMapper() { stop(); }
 // that (interrupt_bundle_adjustment) only when it needs the keyframe at once.
 void LocalMapper::insert_keyframe(KeyFramePtr kf) { worker_.submit(std::move(kf)); }
 
+void LocalMapper::abort(BundleAdjustmentAbort cause) {
+  BundleAdjustmentAbort none = BundleAdjustmentAbort::None;
+  abort_cause_.compare_exchange_strong(none, cause);
+  abort_ba_ = true;
+}
+
 void LocalMapper::pause() {
   if (!worker_.threaded()) return;
-  abort_ba_ = true;
+  if (options_.pause_aborts_bundle_adjustment) abort(BundleAdjustmentAbort::Pause);
   worker_.pause();
 }
 
@@ -45,12 +52,19 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   ThreadCpuStopwatch cpu;
   LocalMapperStats delta;
   delta.keyframes = 1;
+  LocalMapperCpu& step = delta.cpu_by_step;
+  ThreadCpuStopwatch step_cpu;
+  auto next_step = [&step_cpu](double& total) {
+    total += step_cpu.elapsed_ms();
+    step_cpu = ThreadCpuStopwatch();
+  };
   {
     std::lock_guard<std::mutex> lock(map_->update_mutex());
     kf->set_not_erase(true);
     register_keyframe(*kf, recent_points_);
     delta.points_culled = cull_recent_points(recent_points_, kf->id(), options_.point_culling);
   }
+  next_step(step.registration);
   // Hurry (first triangulation neighbour only, no fusion, no BA) when tracking
   // interrupted us or a backlog builds up; one keyframe waiting is normal
   // (tracking queues one while we are busy). Never in synchronous mode
@@ -58,11 +72,13 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   const bool threaded = options_.threaded;
   auto hurry = [this, threaded] { return threaded && (abort_ba_.load() || worker_.queued() >= 2); };
   delta.points_created = create_new_points(*map_, *kf, recent_points_, options_.triangulation, hurry);
+  next_step(step.triangulation);
 
   if (!hurry()) {
     std::lock_guard<std::mutex> lock(map_->update_mutex());
     fuse_with_neighbours(*kf, options_.fusion);
   }
+  next_step(step.fusion);
   const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry();
   if (options_.enable_bundle_adjustment && !run_bundle_adjustment) delta.bundle_adjustments_skipped = 1;
   if (run_bundle_adjustment) {
@@ -72,6 +88,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       if (map_->num_keyframes() > 2) problem = gather_local_window(*kf, options_.window);
     }
     if (!problem.keyframes.empty()) {
+      if (options_.on_bundle_adjustment_start) options_.on_bundle_adjustment_start();
       Stopwatch ba;
       ThreadCpuStopwatch ba_cpu;
       BundleAdjustmentOptions ba_options = options_.bundle_adjustment;
@@ -84,6 +101,9 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       }
       delta.bundle_adjustments = 1;
       delta.bundle_adjustments_aborted = result.aborted ? 1 : 0;
+      const BundleAdjustmentAbort cause = result.aborted ? abort_cause_.load() : BundleAdjustmentAbort::None;
+      delta.bundle_adjustments_aborted_by_tracking = cause == BundleAdjustmentAbort::Tracking ? 1 : 0;
+      delta.bundle_adjustments_aborted_by_pause = cause == BundleAdjustmentAbort::Pause ? 1 : 0;
       delta.bundle_adjustment_ms = ba.elapsed_ms();
       LocalBundleAdjustmentRecord record;
       record.keyframes = window.keyframes;
@@ -94,9 +114,11 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       record.ms = delta.bundle_adjustment_ms;
       record.cpu_ms = ba_cpu.elapsed_ms();
       record.aborted = result.aborted;
+      record.abort_cause = cause;
       delta.bundle_adjustment_runs.push_back(record);
     }
   }
+  next_step(step.bundle_adjustment);
   std::vector<std::uint64_t> culled;
   bool keyframe_alive = false;
   {
@@ -108,6 +130,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
     map_->remove_bad_points();
     keyframe_alive = !kf->is_bad();
   }
+  next_step(step.keyframe_culling);
   if (options_.on_keyframe_culled) {
     for (std::uint64_t id : culled) options_.on_keyframe_culled(id);
   }

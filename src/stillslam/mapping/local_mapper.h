@@ -31,7 +31,8 @@ class LocalMapper {
   // Threaded: nothing queued or in progress. Synchronous: always.
   bool accepts_keyframes() const { return !worker_.threaded() || worker_.idle(); }
   std::size_t queued_keyframes() const { return worker_.queued(); }
-  void interrupt_bundle_adjustment() { abort_ba_ = true; }
+  // Tracking needs the queued keyframe at once: the BA in progress stops.
+  void interrupt_bundle_adjustment() { abort(BundleAdjustmentAbort::Tracking); }
 
   // Synchronous mode: processes every queued keyframe now (no-op when threaded).
   void process_pending() { worker_.run_pending(); }
@@ -39,12 +40,15 @@ class LocalMapper {
   void flush() { worker_.wait_idle(); }
   // Finishes the keyframe in progress and what is queued, joins. Idempotent.
   void stop() { worker_.stop(); }
-  // Loop correction: pause() lets the keyframe in progress finish (its BA is
-  // interrupted), then keeps the worker from starting another one and returns
-  // once it is idle; resume() lets it continue. Keyframes inserted meanwhile
-  // queue up. No-ops in synchronous mode (the owner's thread is the worker).
+  // Loop correction: pause() lets the keyframe in progress finish (with its
+  // BA, or aborting it with options.pause_aborts_bundle_adjustment), then
+  // keeps the worker from starting another one and returns once it is idle;
+  // resume() lets it continue. Keyframes inserted meanwhile queue up. No-ops
+  // in synchronous mode (the owner's thread is the worker).
   void pause();
   void resume() { worker_.resume(); }
+  // pause() was called (it may still be waiting for the keyframe in progress).
+  bool paused() const { return worker_.paused(); }
   // Works on `map` from now on (flushes first; the recent points of the old
   // map are forgotten).
   void switch_map(Map& map);
@@ -53,10 +57,13 @@ class LocalMapper {
 
  private:
   void process(const KeyFramePtr& kf);
+  // Sets abort_ba_; the first cause since the keyframe started is kept.
+  void abort(BundleAdjustmentAbort cause);
 
   Map* map_;  // changed only by switch_map(), while the worker is idle
   LocalMapperOptions options_;
   std::atomic<bool> abort_ba_{false};
+  std::atomic<BundleAdjustmentAbort> abort_cause_{BundleAdjustmentAbort::None};
   std::vector<MapPointPtr> recent_points_;
   mutable std::mutex stats_mutex_;
   LocalMapperStats stats_;

@@ -4,6 +4,18 @@
 
 namespace stillslam {
 
+const char* to_string(BundleAdjustmentAbort cause) {
+  switch (cause) {
+    case BundleAdjustmentAbort::Tracking:
+      return "tracking";
+    case BundleAdjustmentAbort::Pause:
+      return "pause";
+    case BundleAdjustmentAbort::None:
+      break;
+  }
+  return "none";
+}
+
 void LocalMapperOptions::check() const {
   point_culling.check();
   triangulation.check();

@@ -24,11 +24,17 @@ struct LocalMapperOptions {
   LocalWindowOptions window;
   bool enable_bundle_adjustment = true;
   bool enable_keyframe_culling = true;
+  // Loop closing's pause(): false lets the keyframe in progress finish with
+  // its BA (the loop waits for it); true aborts that BA, as before 2026-12-02
+  // (bench/README.md, issue #21: nearly all aborted BAs were these).
+  bool pause_aborts_bundle_adjustment = false;
   // Wired by System (both optional). Called outside the map lock: every
   // finished keyframe (to loop closing) and the ids of culled keyframes (to
   // drop them from place recognition).
   std::function<void(KeyFramePtr)> on_keyframe_processed;
   std::function<void(std::uint64_t)> on_keyframe_culled;
+  // Tests: called on the mapping thread just before each local BA solve.
+  std::function<void()> on_bundle_adjustment_start;
 
   static BundleAdjustmentOptions default_bundle_adjustment() {
     BundleAdjustmentOptions o;
@@ -45,12 +51,34 @@ struct LocalMapperOptions {
   void check() const;
 };
 
+// Why a local BA stopped early.
+enum class BundleAdjustmentAbort { None, Tracking, Pause };
+const char* to_string(BundleAdjustmentAbort cause);
+
 // One local BA: its window, Ceres iterations and cost (wall and mapping-thread CPU).
 struct LocalBundleAdjustmentRecord {
   int keyframes = 0, fixed_keyframes = 0, points = 0, observations = 0;
   int iterations = 0;
   double ms = 0, cpu_ms = 0;
   bool aborted = false;
+  BundleAdjustmentAbort abort_cause = BundleAdjustmentAbort::None;
+};
+
+// Mapping-thread CPU time by step, totals over the keyframes [ms].
+struct LocalMapperCpu {
+  double registration = 0;       // observations, covisibility, recent point culling
+  double triangulation = 0;      // new points with the neighbours
+  double fusion = 0;             // duplicates with the neighbours
+  double bundle_adjustment = 0;  // gather, solve, apply
+  double keyframe_culling = 0;   // redundant keyframes, bad points
+  LocalMapperCpu& operator+=(const LocalMapperCpu& o) {
+    registration += o.registration;
+    triangulation += o.triangulation;
+    fusion += o.fusion;
+    bundle_adjustment += o.bundle_adjustment;
+    keyframe_culling += o.keyframe_culling;
+    return *this;
+  }
 };
 
 struct LocalMapperStats {
@@ -60,10 +88,13 @@ struct LocalMapperStats {
   int keyframes_culled = 0;
   int bundle_adjustments = 0;
   int bundle_adjustments_aborted = 0;
+  int bundle_adjustments_aborted_by_tracking = 0;  // tracking needed a keyframe at once
+  int bundle_adjustments_aborted_by_pause = 0;     // loop closing paused the mapper
   int bundle_adjustments_skipped = 0;  // hurried keyframes (see local_mapper.cpp)
   double bundle_adjustment_ms = 0;  // total
   double total_ms = 0;              // total processing time
   double cpu_ms = 0;                // mapping thread's CPU time (Ceres threads beyond the first not counted)
+  LocalMapperCpu cpu_by_step;       // cpu_ms split by step
   std::vector<LocalBundleAdjustmentRecord> bundle_adjustment_runs;  // in order
 
   LocalMapperStats& operator+=(const LocalMapperStats& o) {
@@ -73,10 +104,13 @@ struct LocalMapperStats {
     keyframes_culled += o.keyframes_culled;
     bundle_adjustments += o.bundle_adjustments;
     bundle_adjustments_aborted += o.bundle_adjustments_aborted;
+    bundle_adjustments_aborted_by_tracking += o.bundle_adjustments_aborted_by_tracking;
+    bundle_adjustments_aborted_by_pause += o.bundle_adjustments_aborted_by_pause;
     bundle_adjustments_skipped += o.bundle_adjustments_skipped;
     bundle_adjustment_ms += o.bundle_adjustment_ms;
     total_ms += o.total_ms;
     cpu_ms += o.cpu_ms;
+    cpu_by_step += o.cpu_by_step;
     bundle_adjustment_runs.insert(bundle_adjustment_runs.end(), o.bundle_adjustment_runs.begin(),
                                   o.bundle_adjustment_runs.end());
     return *this;

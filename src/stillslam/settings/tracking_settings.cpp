@@ -22,6 +22,8 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
                "TrackerOptions.max_frames_between_keyframes", {0, 100000});
   keys.integer("minFramesBetweenKeyframes", tracker.min_frames_between_keyframes,
                "TrackerOptions.min_frames_between_keyframes", {0, 100000});
+  keys.number("keyframesPerSecond", tracker.keyframe_budget.per_second, "KeyFrameBudgetOptions.per_second", {0, 1000});
+  keys.number("keyframeBurst", tracker.keyframe_budget.burst, "KeyFrameBudgetOptions.burst", {1, 1000});
   keys.integer("closePointsTrackedMin", tracker.close_points_tracked_min,
                "TrackerOptions.close_points_tracked_min", {0, 50000});
   keys.integer("closePointsUntrackedMin", tracker.close_points_untracked_min,

@@ -27,7 +27,7 @@ nlohmann::json run_result_json(const RunResult& result, const std::vector<std::s
                       {"moved_keyframes", m.moved_keyframes}, {"welding_keyframes", m.welding_keyframes}});
   }
   stats["map_merges"] = std::move(merges);
-  stats["local_mapping"] = to_json(result.mapper, result.frames.size());
+  stats["local_mapping"] = to_json(result.mapper, result.frames.size(), sequence_seconds(result.frames));
   stats["loop_closing_stats"] = to_json(result.loop_closer);
   if (result.map_file) {
     stats["map_file"] = {{"bytes", result.map_file->bytes}, {"maps", result.map_file->maps},

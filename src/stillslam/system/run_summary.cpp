@@ -55,10 +55,19 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   return s;
 }
 
-LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames) {
+double sequence_seconds(const std::vector<FrameStats>& frames) {
+  if (frames.size() < 2) return 0;
+  const double span = frames.back().timestamp - frames.front().timestamp;
+  return span > 0 ? span * static_cast<double>(frames.size()) / static_cast<double>(frames.size() - 1) : 0;
+}
+
+LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames,
+                                                               double seconds) {
   LocalBundleAdjustmentSummary s;
   s.runs = stats.bundle_adjustments;
   s.aborted = stats.bundle_adjustments_aborted;
+  s.aborted_by_tracking = stats.bundle_adjustments_aborted_by_tracking;
+  s.aborted_by_pause = stats.bundle_adjustments_aborted_by_pause;
   s.skipped = stats.bundle_adjustments_skipped;
   s.aborted_share = s.runs ? static_cast<double>(s.aborted) / s.runs : 0;
   std::vector<double> ms, cpu, kf, fixed, points, obs, it;
@@ -79,12 +88,15 @@ LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapper
   s.observations = summarize_times(obs);
   s.iterations = summarize_times(it);
   s.mapping_cpu_ms_per_frame = frames ? stats.cpu_ms / static_cast<double>(frames) : 0;
+  s.keyframes_per_second = seconds > 0 ? stats.keyframes / seconds : 0;
   return s;
 }
 
 nlohmann::json to_json(const LocalBundleAdjustmentSummary& s) {
   return {{"runs", s.runs},
           {"aborted", s.aborted},
+          {"aborted_by_tracking", s.aborted_by_tracking},
+          {"aborted_by_pause", s.aborted_by_pause},
           {"skipped", s.skipped},
           {"aborted_share", s.aborted_share},
           {"ms", to_json(s.ms)},
@@ -153,8 +165,8 @@ nlohmann::json to_json(const RunSummary& s) {
           {"extraction_share", s.extraction_share}};
 }
 
-nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames) {
-  const LocalBundleAdjustmentSummary ba = summarize_local_bundle_adjustment(s, frames);
+nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames, double seconds) {
+  const LocalBundleAdjustmentSummary ba = summarize_local_bundle_adjustment(s, frames, seconds);
   nlohmann::json runs = nlohmann::json::array();
   for (const LocalBundleAdjustmentRecord& r : s.bundle_adjustment_runs) {
     runs.push_back({{"keyframes", r.keyframes},
@@ -164,7 +176,8 @@ nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames) {
                     {"iterations", r.iterations},
                     {"ms", r.ms},
                     {"cpu_ms", r.cpu_ms},
-                    {"aborted", r.aborted}});
+                    {"aborted", r.aborted},
+                    {"abort_cause", to_string(r.abort_cause)}});
   }
   return {{"keyframes", s.keyframes},
           {"points_created", s.points_created},
@@ -177,6 +190,13 @@ nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames) {
           {"total_ms", s.total_ms},
           {"cpu_ms_total", s.cpu_ms},
           {"cpu_ms_per_frame", ba.mapping_cpu_ms_per_frame},
+          {"cpu_ms_by_step",
+           {{"registration", s.cpu_by_step.registration},
+            {"triangulation", s.cpu_by_step.triangulation},
+            {"fusion", s.cpu_by_step.fusion},
+            {"bundle_adjustment", s.cpu_by_step.bundle_adjustment},
+            {"keyframe_culling", s.cpu_by_step.keyframe_culling}}},
+          {"keyframes_per_second", ba.keyframes_per_second},
           {"local_ba", to_json(ba)},
           {"local_ba_runs", std::move(runs)}};
 }

@@ -28,22 +28,31 @@ struct RunSummary {
 };
 RunSummary summarize_run(const std::vector<FrameStats>& frames);
 
+// The input time the frames span: first to last timestamp plus one frame
+// interval (0 for fewer than two frames).
+double sequence_seconds(const std::vector<FrameStats>& frames);
+
 // Local BA over a run (issue #21): time per BA (wall and mapping-thread CPU),
-// the aborted share, window sizes and Ceres iterations (each as median / p95 /
-// max), and the mapping thread's CPU time per input frame.
+// the aborted share (and why), window sizes and Ceres iterations (each as
+// median / p95 / max), the mapping thread's CPU time per input frame and the
+// keyframes it processed per second of input.
 struct LocalBundleAdjustmentSummary {
   int runs = 0, aborted = 0, skipped = 0;
+  int aborted_by_tracking = 0, aborted_by_pause = 0;
   double aborted_share = 0;  // aborted / runs
   TimingSummary ms, cpu_ms, keyframes, fixed_keyframes, points, observations, iterations;
   double mapping_cpu_ms_per_frame = 0;
+  double keyframes_per_second = 0;  // 0 when seconds is 0
 };
-LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames);
+LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapperStats& stats, std::size_t frames,
+                                                               double seconds = 0);
 
 nlohmann::json to_json(const FrameStats& stats);
 nlohmann::json to_json(const TimingSummary& t);
 nlohmann::json to_json(const RunSummary& s);
-// frames: the frames the run processed (for the mapping CPU per frame).
-nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames);
+// frames: the frames the run processed (for the mapping CPU per frame);
+// seconds: the input time they span (for keyframes per second).
+nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames, double seconds = 0);
 nlohmann::json to_json(const LocalBundleAdjustmentSummary& s);
 nlohmann::json to_json(const LoopCloserStats& s);
 

@@ -22,6 +22,7 @@ constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides w
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
     : map_(&map), options_(options), link_(std::move(link)) {
   options_.check();
+  keyframe_budget_ = KeyFrameBudget(options_.keyframe_budget);
 }
 
 void Tracker::start_new_map(Map& map) {
@@ -33,6 +34,7 @@ void Tracker::start_new_map(Map& map) {
   reference_keyframe_.reset();
   last_keyframe_.reset();
   last_keyframe_frame_id_ = 0;
+  keyframe_budget_.reset();
   last_lost_frame_id_ = 0;
   was_lost_ = false;
   start_candidate_.reset();
@@ -176,6 +178,7 @@ void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
   reference_keyframe_ = kf;
   last_keyframe_ = kf;
   last_keyframe_frame_id_ = frame.id();
+  keyframe_budget_.spend(frame.timestamp());
   T_last_ref_ = Eigen::Isometry3d::Identity();
   last_frame_ = frame;
   state_ = TrackingState::Ok;
@@ -388,9 +391,10 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   const bool c1c = inliers < reference_matches * 0.25 || need_close;
   const bool c2 = (inliers < reference_matches * ratio || need_close) && inliers > 15;
   if (!((c1a || c1b || c1c) && c2)) return false;
+  const bool weak = inliers < reference_matches * 0.25;
+  if (!weak && !keyframe_budget_.allows(frame.timestamp())) return false;
   const KeyFrameAdmission admission =
-      admit_keyframe(idle, inliers < reference_matches * 0.25, need_close,
-                     link_.queued_keyframes ? link_.queued_keyframes() : 0);
+      admit_keyframe(idle, weak, need_close, link_.queued_keyframes ? link_.queued_keyframes() : 0);
   if (admission.interrupt_bundle_adjustment && link_.interrupt_bundle_adjustment) {
     link_.interrupt_bundle_adjustment();
   }
@@ -437,6 +441,7 @@ void Tracker::create_keyframe(Frame& frame) {
   reference_keyframe_ = kf;
   last_keyframe_ = kf;
   last_keyframe_frame_id_ = frame.id();
+  keyframe_budget_.spend(frame.timestamp());
   if (link_.insert_keyframe) link_.insert_keyframe(kf);
 }
 

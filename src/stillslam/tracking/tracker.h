@@ -12,6 +12,7 @@
 
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map.h"
+#include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/tracker_options.h"
 #include "stillslam/tracking/tracking_state.h"
 
@@ -93,6 +94,7 @@ class Tracker {
   KeyFramePtr reference_keyframe_;
   KeyFramePtr last_keyframe_;
   std::uint64_t last_keyframe_frame_id_ = 0;
+  KeyFrameBudget keyframe_budget_;
   std::uint64_t last_lost_frame_id_ = 0;
   bool was_lost_ = false;
   std::uint64_t temporary_point_id_ = 0;

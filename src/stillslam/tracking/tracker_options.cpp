@@ -15,6 +15,7 @@ void TrackerOptions::check() const {
   at_least("TrackerOptions.max_frames_between_keyframes", max_frames_between_keyframes, 0);
   in_range("TrackerOptions.min_frames_between_keyframes", min_frames_between_keyframes, 0,
            std::max(max_frames_between_keyframes, 0));
+  keyframe_budget.check();
   above("TrackerOptions.motion_search_radius", motion_search_radius, 0);
   above("TrackerOptions.local_map_search_th", local_map_search_th, 0);
   above("TrackerOptions.reference_search_th", reference_search_th, 0);

@@ -2,6 +2,7 @@
 #include "stillslam/optimize/pose_optimizer.h"
 #include "stillslam/tracking/depth_point_check.h"
 #include "stillslam/tracking/initial_view_check.h"
+#include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/tracking_probe.h"
 
 namespace stillslam {
@@ -19,6 +20,7 @@ struct TrackerOptions {
   int init_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
+  KeyFrameBudgetOptions keyframe_budget;  // keyframes per second of input (tracking/keyframe_budget.h)
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
   float local_map_search_th = 3.f;
   float reference_search_th = 5.f;     // wide window when the motion model fails

@@ -1,0 +1,40 @@
+#include "stillslam/tracking/keyframe_budget.h"
+
+#include <algorithm>
+
+#include "stillslam/core/option_check.h"
+
+namespace stillslam {
+
+void KeyFrameBudgetOptions::check() const {
+  using namespace option_check;
+  in_range("KeyFrameBudgetOptions.per_second", per_second, 0, 1000);
+  in_range("KeyFrameBudgetOptions.burst", burst, 1, 1000);
+}
+
+KeyFrameBudget::KeyFrameBudget(KeyFrameBudgetOptions options) : options_(options) { options_.check(); }
+
+double KeyFrameBudget::balance_at(double timestamp) const {
+  if (!started_) return options_.burst;
+  // Time going backwards (another input, a new map) adds nothing.
+  const double elapsed = std::max(0.0, timestamp - last_timestamp_);
+  return std::min(options_.burst, balance_ + elapsed * options_.per_second);
+}
+
+bool KeyFrameBudget::allows(double timestamp) const {
+  return options_.per_second <= 0 || balance_at(timestamp) >= 1;
+}
+
+void KeyFrameBudget::spend(double timestamp) {
+  balance_ = std::max(0.0, balance_at(timestamp) - 1);
+  last_timestamp_ = timestamp;
+  started_ = true;
+}
+
+void KeyFrameBudget::reset() {
+  balance_ = 0;
+  last_timestamp_ = 0;
+  started_ = false;
+}
+
+}  // namespace stillslam

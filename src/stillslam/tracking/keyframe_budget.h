@@ -1,0 +1,37 @@
+#pragma once
+// How many keyframes tracking may hand to local mapping per second of input
+// (issue #21): each keyframe costs the mapper tens of CPU-ms (registration,
+// triangulation, fusion, local BA), and on 2 cores at 30 Hz it cannot take one
+// every frame. A token bucket on the frames' timestamps, so deterministic and
+// threaded runs make the same decision: it fills at per_second and holds at
+// most `burst` keyframes; an ordinary keyframe needs a whole token. Tracking
+// about to fail takes its keyframe anyway (the balance stays at >= 0).
+namespace stillslam {
+
+struct KeyFrameBudgetOptions {
+  double per_second = 0;  // 0: no budget
+  double burst = 2;       // keyframes that may come back to back
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
+};
+
+class KeyFrameBudget {
+ public:
+  explicit KeyFrameBudget(KeyFrameBudgetOptions options = {});
+  // A keyframe at `timestamp` (seconds) is within the budget.
+  bool allows(double timestamp) const;
+  // A keyframe was made at `timestamp`.
+  void spend(double timestamp);
+  // Full again (a new map).
+  void reset();
+
+ private:
+  double balance_at(double timestamp) const;
+
+  KeyFrameBudgetOptions options_;
+  double balance_ = 0;
+  double last_timestamp_ = 0;
+  bool started_ = false;  // no keyframe yet: full
+};
+
+}  // namespace stillslam

@@ -1,0 +1,86 @@
+// Keyframes per second of input (tracking/keyframe_budget.h).
+#include <gtest/gtest.h>
+
+#include "stillslam/core/option_check.h"
+#include "stillslam/tracking/keyframe_budget.h"
+
+namespace stillslam {
+namespace {
+
+// Asks on every frame of a 30 Hz input and spends whenever allowed: the
+// keyframes made over `seconds`.
+int keyframes_made(KeyFrameBudget& budget, double seconds) {
+  int made = 0;
+  for (int f = 0; f < static_cast<int>(seconds * 30); ++f) {
+    const double t = f / 30.0;
+    if (budget.allows(t)) {
+      budget.spend(t);
+      ++made;
+    }
+  }
+  return made;
+}
+
+TEST(KeyFrameBudget, NoBudgetAllowsEveryFrame) {
+  KeyFrameBudget budget({0, 2});
+  EXPECT_EQ(keyframes_made(budget, 2), 60);
+}
+
+TEST(KeyFrameBudget, BurstThenTheRate) {
+  KeyFrameBudget budget({5, 2});
+  // 2 at once, then about one every 6 frames (5 per second) over the 10 s
+  // (a token whole only on the 7th frame when rounding leaves it just short).
+  const int made = keyframes_made(budget, 10);
+  EXPECT_GE(made, 2 + 300 / 7);
+  EXPECT_LE(made, 2 + 50);
+  // The first two come back to back (the second leaves 1/6 of a token), the
+  // third waits the remaining 5/6 / 5 = 1/6 s.
+  KeyFrameBudget fresh({5, 2});
+  EXPECT_TRUE(fresh.allows(0));
+  fresh.spend(0);
+  EXPECT_TRUE(fresh.allows(1 / 30.0));
+  fresh.spend(1 / 30.0);
+  EXPECT_FALSE(fresh.allows(2 / 30.0));
+  EXPECT_FALSE(fresh.allows(1 / 30.0 + 0.16));
+  EXPECT_TRUE(fresh.allows(1 / 30.0 + 0.17));
+}
+
+TEST(KeyFrameBudget, KeyframesBeyondTheBudgetLeaveItEmptyNotInDebt) {
+  KeyFrameBudget budget({2, 1});
+  budget.spend(0);
+  // Tracking about to fail takes three more within 0.1 s.
+  budget.spend(0.03);
+  budget.spend(0.06);
+  budget.spend(0.1);
+  EXPECT_FALSE(budget.allows(0.5));
+  EXPECT_TRUE(budget.allows(0.61));  // 0.5 s after the last at 2 per second
+}
+
+TEST(KeyFrameBudget, TimeGoingBackAddsNothingAndResetFillsIt) {
+  KeyFrameBudget budget({1, 1});
+  budget.spend(10);
+  EXPECT_FALSE(budget.allows(3));
+  budget.spend(3);
+  EXPECT_FALSE(budget.allows(3.5));
+  EXPECT_TRUE(budget.allows(4));
+  budget.reset();
+  EXPECT_TRUE(budget.allows(0));
+}
+
+TEST(KeyFrameBudget, OptionsOutOfRangeNameTheField) {
+  try {
+    KeyFrameBudget budget({-1, 2});
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.per_second");
+  }
+  try {
+    KeyFrameBudget budget({3, 0.5});
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.burst");
+  }
+}
+
+}  // namespace
+}  // namespace stillslam
