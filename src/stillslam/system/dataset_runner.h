@@ -65,6 +65,10 @@ struct RunResult {
   bool interrupted = false;
   std::optional<std::string> error;  // the Error that ended the run early
   double wall_seconds = 0;
+  // From the first frame taken to the end of the last one's process(), and
+  // the CPU time of the whole process (every thread) meanwhile.
+  double processing_seconds = 0;
+  double process_cpu_seconds = 0;
   std::size_t map_points = 0;
   std::size_t maps = 1;           // at the end (after merges)
   int new_maps = 0;               // started because tracking stayed lost

@@ -104,6 +104,12 @@ nlohmann::json to_json(const FrameStats& f) {
           {"has_pose", f.has_pose},
           {"map_id", f.map_id},
           {"keyframe", f.keyframe},
+          {"keyframe_deferred", f.keyframe_deferred},
+          {"mask_age", f.build.mask_age},
+          {"mask_fresh", f.build.mask_age == 0},
+          {"mask_waited", f.build.mask_waited},
+          {"segmentation_request", to_string(f.build.segmentation_request)},
+          {"segmentation_skips", f.build.segmentation_skips},
           {"features_before_filter", f.build.keypoints_before},
           {"features_after_filter", f.build.keypoints_after},
           {"features_with_depth", f.build.keypoints_with_depth},
@@ -124,7 +130,8 @@ nlohmann::json to_json(const FrameStats& f) {
             {"extraction_cpu", f.build.extraction_cpu_ms},
             {"tracking_cpu", f.tracking_cpu_ms},
             {"total_cpu", f.total_cpu_ms},
-            {"publish", f.publish_ms}}},
+            {"publish", f.publish_ms},
+            {"latency", f.latency_ms}}},
           {"loops_closed", f.loops_closed},
           {"global_bundle_adjustment_running", f.global_bundle_adjustment_running}};
 }
