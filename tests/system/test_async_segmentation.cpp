@@ -64,7 +64,9 @@ TEST(AsyncSegmentation, StatsFieldsPerFrameAndInStatsJson) {
     requests += f.build.segmentation_request != ScheduleReason::None;
     deferred += f.keyframe_deferred;
     keyframes += f.keyframe;
-    if (f.keyframe && f.reason != "initialized") EXPECT_LE(f.build.mask_age, 2) << "keyframe from an old mask, frame " << f.index;
+    if (f.keyframe && f.reason != "initialized") {
+      EXPECT_LE(f.build.mask_age, 2) << "keyframe from an old mask, frame " << f.index;
+    }
     EXPECT_EQ(f.build.segmentation_skips, 0u);  // deterministic: nothing is skipped
   }
   EXPECT_EQ(r.frames[0].build.mask_age, 0);

@@ -121,6 +121,7 @@ nlohmann::json to_json(const FrameStats& f) {
           {"times_ms",
            {{"extraction", f.build.extraction_ms},
             {"segmentation", f.build.segmentation_ms},
+            {"segmentation_cpu", f.build.segmentation_cpu_ms},
             {"segmentation_wait", f.build.segmentation_wait_ms},
             {"association", f.build.association_ms},
             {"frame_build", f.build.total_ms},

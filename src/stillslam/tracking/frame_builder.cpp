@@ -75,6 +75,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     SegmentationResult seg = mask_future.get();
     st.segmentation_wait_ms = wait.elapsed_ms();
     st.segmentation_ms = seg.time_ms;
+    st.segmentation_cpu_ms = seg.cpu_ms;
     st.detections = static_cast<int>(seg.detections.size());
     st.mask_coverage = seg.coverage;
     st.held_coverage = seg.held_coverage;
@@ -87,6 +88,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     const FrameMask m = async_->mask_for(color, input.index);
     st.segmentation_wait_ms = m.wait_ms;
     st.segmentation_ms = m.age == 0 ? m.source->time_ms : 0;
+    st.segmentation_cpu_ms = m.age == 0 ? m.source->cpu_ms : 0;
     st.detections = static_cast<int>(m.source->detections.size());
     st.mask_coverage = m.age == 0 ? m.source->coverage : mask_coverage(m.mask);
     st.held_coverage = m.source->held_coverage;

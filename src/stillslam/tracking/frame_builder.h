@@ -33,6 +33,7 @@ struct FrameBuildStats {
   double extraction_ms = 0;  // ORB on the left image (the right one ran meanwhile)
   double extraction_cpu_ms = 0;  // CPU time of this thread in the left-image extraction
   double segmentation_ms = 0;       // segmenter time on its own thread
+  double segmentation_cpu_ms = 0;   // and its CPU time there (for this frame's own mask)
   double segmentation_wait_ms = 0;  // time this thread waited for the mask
   double association_ms = 0;        // stereo matching / depth lookup
   double total_ms = 0;
