@@ -10,6 +10,7 @@
 // --gray segments what a monochrome camera (EuRoC, most stereo rigs) would
 // give: the same frames turned to gray and back to three equal channels.
 // Without --model: models/*.onnx and ../shared/models/yolo-seg/yolo11n-seg_*.onnx.
+// --propagate A: accuracy of propagated masks by age 0..A (mask_propagation_accuracy.h).
 #include <time.h>
 
 #include <CLI/CLI.hpp>
@@ -26,6 +27,7 @@
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
+#include "mask_propagation_accuracy.h"
 
 namespace fs = std::filesystem;
 using namespace stillslam;
@@ -63,10 +65,42 @@ int main(int argc, char** argv) {
   app.add_flag("--gray", gray, "segment the frames as a monochrome camera gives them");
   app.add_flag("--per-frame", per_frame, "print each frame's figures too");
   app.add_option("--max-frames", max_frames, "only the first N sampled frames (0: all)");
+  bench::PropagationBenchOptions prop;
+  app.add_option("--propagate", prop.max_age, "propagation mode: carry each sampled frame's mask to ages 1..A")
+      ->check(CLI::Range(1, 100));
+  app.add_option("--depth", prop.depth, "propagation mode: dense, sparse (FAST corners only, like stereo) or none")
+      ->capture_default_str();
+  app.add_option("--margin-px", prop.propagation.margin_px, "propagation mode: margin at age 0")->capture_default_str();
+  app.add_option("--margin-per-frame", prop.propagation.margin_px_per_frame, "propagation mode: margin growth per frame")
+      ->capture_default_str();
+  app.add_option("--max-margin", prop.propagation.max_margin_px, "propagation mode: margin cap")->capture_default_str();
+  app.add_option("--points", prop.propagation.points_per_instance, "propagation mode: flow points per instance")
+      ->capture_default_str();
+  app.add_option("--lk-window", prop.propagation.lk_window_px, "propagation mode: LK window (odd)")->capture_default_str();
+  app.add_option("--lk-levels", prop.propagation.lk_levels, "propagation mode: LK pyramid levels")->capture_default_str();
+  app.add_option("--fb-max-error", prop.propagation.fb_max_error_px, "propagation mode: forward-backward check (0: off)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  if (app.count("--propagate") > 0) {
+    prop.sequence = seq;
+    prop.step = step;
+    prop.max_starts = max_frames;
+    if (models.size() > 1) {
+      std::fprintf(stderr, "--propagate takes one --model at most\n");
+      return 1;
+    }
+    if (!models.empty()) prop.model = models.front();
+    try {
+      prop.propagation.check();
+      return bench::run_propagation_bench(prop);
+    } catch (const Error& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 1;
+    }
   }
   if (models.empty()) {
     const fs::path repo = fs::path(STILLSLAM_SOURCE_DIR);

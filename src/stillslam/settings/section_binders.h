@@ -20,5 +20,6 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
 void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options);  // LocalMapping.*
 void bind_loop_closing(const YamlReader& yaml, Settings& settings);             // LoopClosing.*
 void bind_viewer(const YamlReader& yaml, ViewerOptions& options);              // Viewer.port, Viewer.host
+void bind_mask_propagation(const YamlReader& yaml, MaskPropagationOptions& options);  // MaskPropagation.*
 
 }  // namespace stillslam

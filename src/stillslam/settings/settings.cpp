@@ -19,6 +19,7 @@ Settings load_settings(const std::filesystem::path& yaml_file, const std::filesy
   bind_local_mapping(yaml, s.local_mapping);
   bind_loop_closing(yaml, s);
   bind_viewer(yaml, s.viewer);
+  bind_mask_propagation(yaml, s.mask_propagation);
   return s;
 }
 

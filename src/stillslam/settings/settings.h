@@ -2,7 +2,7 @@
 // Run settings: an ORB-SLAM3-compatible OpenCV YAML file bound to the Options
 // of each module. The camera keys are io's (CameraSettings); every other
 // section fills one Options struct: ORBextractor.* (features), Stereo.flowMatching,
-// Segmentation.*, Tracking.*, LocalMapping.*, LoopClosing.*, Viewer.*.
+// Segmentation.*, MaskPropagation.*, Tracking.*, LocalMapping.*, LoopClosing.*, Viewer.*.
 // config/README.md lists every key with its default and range. A key left out
 // keeps the Options default; a bad value is an Error naming the file and key.
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include "stillslam/loop/map_merger.h"
 #include "stillslam/loop/place_recognizer.h"
 #include "stillslam/mapping/local_mapper_options.h"
+#include "stillslam/segmentation/mask_propagation.h"
 #include "stillslam/segmentation/segmentation_options.h"
 #include "stillslam/settings/viewer_options.h"
 #include "stillslam/tracking/relocalizer.h"
@@ -35,6 +36,7 @@ struct Settings : CameraSettings {
   bool map_merging = true;                   // LoopClosing.mapMerging
   MapMergerOptions map_merger;               // LoopClosing.merge*
   ViewerOptions viewer;                      // Viewer.port, Viewer.host
+  MaskPropagationOptions mask_propagation;   // MaskPropagation.*
 };
 
 // The most threads a thread-count key (Segmentation.threads, *.baThreads)

@@ -1,0 +1,77 @@
+// MaskPropagation.* keys: bound to MaskPropagationOptions, defaults kept when
+// absent, a bad value is an error naming the key and its range.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/temp_dir.h"
+#include "stillslam/core/error.h"
+#include "stillslam/settings/settings.h"
+
+namespace stillslam {
+namespace {
+
+using test::TempDir;
+
+const std::string kBase = R"(%YAML:1.0
+Camera.fx: 535.4
+Camera.fy: 539.2
+Camera.cx: 320.1
+Camera.cy: 247.6
+Camera.k1: 0.0
+Camera.k2: 0.0
+Camera.p1: 0.0
+Camera.p2: 0.0
+Camera.width: 640
+Camera.height: 480
+Camera.fps: 30.0
+Camera.bf: 40.0
+ThDepth: 40.0
+DepthMapFactor: 5000.0
+Segmentation.enabled: 0
+)";
+
+std::string load_error(const TempDir& dir, const std::string& text) {
+  try {
+    load_settings(dir.write("bad.yaml", text));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
+  TempDir dir;
+  const Settings defaults = load_settings(dir.write("a.yaml", kBase));
+  EXPECT_EQ(defaults.mask_propagation.mode, MaskPropagationOptions{}.mode);
+  EXPECT_EQ(defaults.mask_propagation.lk_window_px, MaskPropagationOptions{}.lk_window_px);
+  const Settings s = load_settings(dir.write(
+      "b.yaml", kBase + "MaskPropagation.mode: 1\nMaskPropagation.marginPx: 6\nMaskPropagation.marginPxPerFrame: 2.5\n"
+                        "MaskPropagation.maxMarginPx: 40\nMaskPropagation.pointsPerInstance: 80\n"
+                        "MaskPropagation.lkWindowPx: 21\nMaskPropagation.lkLevels: 4\n"
+                        "MaskPropagation.fbMaxErrorPx: 0\nMaskPropagation.maxDepth: 8\n"));
+  EXPECT_EQ(s.mask_propagation.mode, 1);
+  EXPECT_EQ(s.mask_propagation.margin_px, 6);
+  EXPECT_DOUBLE_EQ(s.mask_propagation.margin_px_per_frame, 2.5);
+  EXPECT_EQ(s.mask_propagation.max_margin_px, 40);
+  EXPECT_EQ(s.mask_propagation.points_per_instance, 80);
+  EXPECT_EQ(s.mask_propagation.lk_window_px, 21);
+  EXPECT_EQ(s.mask_propagation.lk_levels, 4);
+  EXPECT_DOUBLE_EQ(s.mask_propagation.fb_max_error_px, 0);
+  EXPECT_DOUBLE_EQ(s.mask_propagation.max_depth_m, 8);
+}
+
+TEST(MaskPropagationSettings, BadValuesNameTheKey) {
+  TempDir dir;
+  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.mode: 3\n").find("MaskPropagation.mode' is 3: must be in [0, 2]"),
+            std::string::npos);
+  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.lkWindowPx: 20\n").find("MaskPropagation.lkWindowPx"),
+            std::string::npos);
+  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.marginPx: 9\nMaskPropagation.maxMarginPx: 5\n")
+                .find("MaskPropagation.maxMarginPx"),
+            std::string::npos);
+  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.lkWindow: 21\n").find("known keys"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stillslam
