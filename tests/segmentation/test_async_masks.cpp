@@ -108,3 +108,31 @@ TEST(AsyncMasks, OrdinaryFramesDoNotWaitForABusySegmenter) {
 
 }  // namespace
 }  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+TEST(AsyncMasks, CarriedMasksGoThroughThePropagatorWhenGivenTheGreyImage) {
+  auto gate = std::make_shared<test::Gate>();
+  auto stage = make_stage(gate, false);
+  MaskPropagationOptions hold;
+  hold.mode = 0;  // no motion: the margin alone shows the propagator was used
+  hold.margin_px = 3;
+  hold.margin_px_per_frame = 1;
+  AsyncMasks masks(*stage, options(10, 0, 10), MaskPropagator(MaskPropagationCamera{50, 50, 30, 20}, hold), 0);
+  const cv::Mat1b gray(40, 60, uchar(50));
+  const FrameMask fresh = masks.mask_for(image(), 0, gray);
+  EXPECT_EQ(fresh.age, 0);
+  EXPECT_EQ(cv::countNonZero(fresh.mask), 100);  // the fresh 10x10 square as segmented
+  masks.on_tracked(0, Eigen::Isometry3d::Identity());
+  const FrameMask carried = masks.mask_for(image(), 2, gray);
+  EXPECT_EQ(carried.age, 2);
+  EXPECT_EQ(cv::countNonZero(carried.mask(cv::Rect(0, 0, 10, 10))), 100);
+  // Grown by the margin at age 2 (3 + 2 px): the square reaches about 14 px right and down.
+  EXPECT_GT(carried.mask(0, 13), 0);
+  EXPECT_EQ(carried.mask(0, 16), 0);
+  EXPECT_GT(carried.mask(13, 0), 0);
+}
+
+}  // namespace
+}  // namespace stillslam

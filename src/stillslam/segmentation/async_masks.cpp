@@ -27,12 +27,77 @@ AsyncMaskOptions AsyncMaskOptions::from(const SegmentationOptions& segmentation)
   return o;
 }
 
-AsyncMasks::AsyncMasks(SegmentationStage& stage, AsyncMaskOptions options)
-    : stage_(stage), options_(options), scheduler_((options.check(), options.interval)) {}
+AsyncMasks::AsyncMasks(SegmentationStage& stage, AsyncMaskOptions options, std::optional<MaskPropagator> propagator,
+                       int dilation_px)
+    : stage_(stage),
+      options_(options),
+      scheduler_((options.check(), options.interval)),
+      propagator_(std::move(propagator)),
+      dilation_px_(dilation_px) {}
+
+void AsyncMasks::on_tracked(std::size_t frame_index, const std::optional<Eigen::Isometry3d>& T_cam_world,
+                            cv::Mat1f sparse_depth) {
+  auto kept = submitted_.find(frame_index);
+  if (kept != submitted_.end()) {
+    kept->second.T_cam_world = T_cam_world;
+    if (kept->second.depth.empty()) kept->second.depth = std::move(sparse_depth);
+  }
+  if (!T_cam_world) {
+    poses_.clear();
+    return;
+  }
+  if (propagator_ && last_propagated_ == frame_index && !propagator_->empty()) propagator_->set_last_pose(*T_cam_world);
+  poses_.emplace_back(frame_index, *T_cam_world);
+  if (poses_.size() > 2) poses_.pop_front();
+}
+
+std::optional<Eigen::Isometry3d> AsyncMasks::predicted_pose(std::size_t frame_index) const {
+  // Constant velocity over consecutive tracked frames; none across gaps.
+  if (poses_.size() < 2 || poses_[1].first + 1 != frame_index || poses_[0].first + 1 != poses_[1].first) {
+    return std::nullopt;
+  }
+  return poses_[1].second * poses_[0].second.inverse() * poses_[1].second;
+}
+
+cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray, const cv::Mat1f& depth, int age) {
+  if (reset_from_ != fresh_->frame_index) {
+    const auto kept = submitted_.find(fresh_->frame_index);
+    if (kept == submitted_.end()) return carried(*fresh_, age);
+    SegmentedFrame fresh;
+    fresh.frame_id = fresh_->frame_index;
+    fresh.gray = kept->second.gray;
+    fresh.depth = kept->second.depth;
+    fresh.instances = fresh_->instances;
+    fresh.T_cam_world = kept->second.T_cam_world;
+    propagator_->reset(std::move(fresh));
+    reset_from_ = fresh_->frame_index;
+    last_propagated_ = fresh_->frame_index;
+  }
+  if (age == 0) return fresh_->dynamic_mask;
+  const PropagatedMasks moved = propagator_->propagate(frame_index, gray, depth, predicted_pose(frame_index));
+  last_propagated_ = frame_index;
+  cv::Mat1b out;
+  if (dilation_px_ > 0 && cv::countNonZero(moved.union_mask) > 0) {
+    cv::dilate(moved.union_mask, out,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * dilation_px_ + 1, 2 * dilation_px_ + 1)));
+  } else {
+    out = moved.union_mask.clone();
+  }
+  // Instances the segmenter lost (MaskHold) are held as they were, grown.
+  if (!fresh_->held_mask.empty()) {
+    SegmentationResult held;
+    held.dynamic_mask = fresh_->held_mask;
+    cv::bitwise_or(out, carried(held, age), out);
+  }
+  return out;
+}
 
 bool AsyncMasks::stage_busy() const { return stage_.threaded() ? stage_.busy() : !pending_.empty(); }
 
 void AsyncMasks::submit(const cv::Mat& bgr, std::size_t frame_index) {
+  if (propagator_ && !pending_gray_.empty()) {
+    submitted_[frame_index] = Submitted{pending_gray_, pending_depth_, std::nullopt};
+  }
   stage_.submit(bgr, frame_index);
   if (!stage_.threaded()) pending_.push_back(stage_.latest());
 }
@@ -72,8 +137,11 @@ cv::Mat1b AsyncMasks::carried(const SegmentationResult& result, int age) const {
   return out;
 }
 
-FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index) {
+FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, const cv::Mat& gray,
+                               const cv::Mat& depth) {
   FrameMask out;
+  pending_gray_ = gray;
+  pending_depth_ = depth;
   collect(frame_index);
   out.scheduled = scheduler_.decide(frame_index, stage_busy());
   if (out.scheduled != ScheduleReason::None) submit(bgr, frame_index);
@@ -99,7 +167,13 @@ FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index) {
   }
   out.source = fresh_;
   out.age = static_cast<int>(frame_index - fresh_->frame_index);
-  out.mask = carried(*fresh_, out.age);
+  if (propagator_ && !gray.empty()) {
+    out.mask = propagated(frame_index, pending_gray_, pending_depth_, out.age);
+    // What a later fresh result could start from is kept; older frames are not needed.
+    submitted_.erase(submitted_.begin(), submitted_.lower_bound(fresh_->frame_index));
+  } else {
+    out.mask = carried(*fresh_, out.age);
+  }
   return out;
 }
 

@@ -27,6 +27,7 @@ SegmentationResult DynamicMaskMaker::make(const cv::Mat& bgr, std::size_t frame_
   const cv::Mat1b held = hold_.update(r.instances, bgr.size());
   if (!held.empty()) {
     r.held_coverage = mask_coverage(held);
+    r.held_mask = held;
     cv::bitwise_or(r.dynamic_mask, held, r.dynamic_mask);
   }
   r.coverage = mask_coverage(r.dynamic_mask);

@@ -18,6 +18,7 @@ struct SegmentationResult {
   // Fraction of frame pixels held over from instances lost since earlier
   // frames (MaskHold; included in dynamic_mask).
   double held_coverage = 0;
+  cv::Mat1b held_mask;  // those held-over instances (empty: none)
   double time_ms = 0;      // segment() + mask building, on the segmenting thread
   double cpu_ms = 0;       // CPU time of that thread for it
 };

@@ -108,7 +108,11 @@ void System::build_pipeline(const Settings& settings) {
       segmentation_stage_ = std::make_unique<SegmentationStage>(
           DynamicMaskMaker(std::move(segmenter), dynamic_class_ids_, settings.segmentation.mask_dilation, hold),
           mode == WorkerMode::Threaded);
-      async_masks_ = std::make_unique<AsyncMasks>(*segmentation_stage_, AsyncMaskOptions::from(settings.segmentation));
+      const PinholeCamera& camera = setup_->camera;
+      MaskPropagator propagator(MaskPropagationCamera{camera.fx(), camera.fy(), camera.cx(), camera.cy()},
+                                settings.mask_propagation);
+      async_masks_ = std::make_unique<AsyncMasks>(*segmentation_stage_, AsyncMaskOptions::from(settings.segmentation),
+                                                  std::move(propagator), settings.segmentation.mask_dilation);
       urgent_inliers_ = settings.segmentation.urgent_inliers;
     } else {
       segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
@@ -342,6 +346,22 @@ FrameStats System::process(const SensorFrame& input) {
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
+  if (async_masks_) {
+    std::optional<Eigen::Isometry3d> pose;
+    if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();
+    cv::Mat1f sparse_depth;
+    if (sensor_ == SensorType::Stereo) {
+      // Mask propagation from this frame, if it was segmented, needs depth.
+      sparse_depth = cv::Mat1f::zeros(input.gray.size());
+      for (std::size_t i = 0; i < frame.size(); ++i) {
+        const cv::Point p = frame.keypoints_raw()[i].pt;
+        if (frame.depth(i) > 0 && p.inside(cv::Rect(0, 0, sparse_depth.cols, sparse_depth.rows))) {
+          sparse_depth(p) = frame.depth(i);
+        }
+      }
+    }
+    async_masks_->on_tracked(input.index, pose, std::move(sparse_depth));
+  }
   stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
