@@ -139,7 +139,12 @@ std::optional<double> ate_rmse(const Args& a, const Trajectory& estimate) {
   fs::path gt = a.groundtruth;
   if (gt.empty() && fs::exists(fs::path(a.input) / "groundtruth.txt")) gt = fs::path(a.input) / "groundtruth.txt";
   if (gt.empty() || estimate.empty()) return std::nullopt;
-  return evaluate(read_trajectory(gt), estimate, EvaluationOptions{}).ape_stats.rmse;
+  try {
+    return evaluate(read_trajectory(gt), estimate, EvaluationOptions{}).ape_stats.rmse;
+  } catch (const Error& e) {  // e.g. a realtime run that tracked too few frames to align
+    std::printf("  no ATE: %s\n", e.what());
+    return std::nullopt;
+  }
 }
 
 double median(std::vector<double> v) {
