@@ -55,6 +55,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
 
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
+  std::size_t next_index = first;  // the frame `next` loads
   if (n > first) next = std::async(std::launch::async, load, first);
   const double t0 = n > first ? dataset.timestamp(first) : 0.0;
   double paused_seconds = 0;
@@ -75,18 +76,30 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
         }
         paused_seconds += held.elapsed_ms() / 1000.0;  // not late: realtime pacing starts again
       }
+      if (options.realtime) {
+        // A live camera: the newest frame that has arrived is taken, the ones
+        // before it that the system was too busy for are dropped (and never loaded).
+        const double now = wall.elapsed_ms() / 1000.0 - paused_seconds - loop_start;
+        std::size_t newest = i;
+        while (newest + 1 < n && dataset.timestamp(newest + 1) - t0 <= now) ++newest;
+        out.dropped_frames += newest - i;
+        i = newest;
+      }
+      if (next_index != i) {
+        try {
+          next.wait();
+        } catch (...) {
+        }
+        next = std::async(std::launch::async, load, i);
+      }
       SensorFrame frame = next.get();
       if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
+      next_index = i + 1;
       // When the frame arrived, on the wall clock minus pauses.
       double arrival = wall.elapsed_ms() / 1000.0 - paused_seconds;
       if (options.realtime) {
         const double due = dataset.timestamp(i) - t0 + loop_start;
-        const double now = arrival;
-        if (i + 1 < n && now > dataset.timestamp(i + 1) - t0 + loop_start) {
-          ++out.dropped_frames;
-          continue;
-        }
-        if (due > now) std::this_thread::sleep_for(std::chrono::duration<double>(due - now));
+        if (due > arrival) std::this_thread::sleep_for(std::chrono::duration<double>(due - arrival));
         arrival = due;
       }
       if (!frame.valid) continue;

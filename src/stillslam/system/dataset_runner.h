@@ -25,7 +25,8 @@ struct RunOptions {
   // stopped early (interrupted, input error).
   std::filesystem::path save_map;
   // Pace frames by their timestamps; frames whose time has passed while the
-  // system was busy are dropped, as with a live camera.
+  // system was busy are dropped (not even loaded), as with a live camera
+  // whose newest frame is taken.
   bool realtime = false;
   // Checked before each frame (also before the first one: a stop requested
   // while the system was being built ends the run with no frame processed).
