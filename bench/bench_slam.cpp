@@ -9,6 +9,16 @@
 //       [--max-frames N] [--opencv-threads N] [--json OUT] [--vocabulary FILE]
 //       [--oracle-masks DIR [--mask-miss-rate R] [--mask-miss-burst S] [--mask-miss-seed N]]
 //       [--trajectory OUT] [--keyframe-trajectory OUT]
+//       [--realtime] [--segmenter-cost-ms MS] [--variants off,sync,async [--runs N]]
+//
+// --realtime: frames paced by their timestamps, late ones dropped (as live).
+// --segmenter-cost-ms: with --oracle-masks, each segmentation first burns
+// this much CPU time (the measured YOLO CPU per frame), so asynchronous
+// timing is realistic without the model.
+// --variants: in one invocation, on identical settings, runs each variant
+// (off: no segmentation; sync / async: Segmentation.mode) --runs times,
+// interleaved, and prints medians: fps, per-frame time, latency, dropped
+// frames, CPU per frame, ATE, and the ratios to "off" and to "sync".
 //
 // --oracle-masks: a `stillslam simulate` folder; its ground-truth masks/ (in
 // associations.txt order) replace YOLO, with the settings' dilation and hold.
@@ -22,7 +32,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
+#include <optional>
+#include <vector>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +49,7 @@
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/system/dataset_runner.h"
+#include "stillslam/system/realtime_summary.h"
 #include "stillslam/system/run_summary.h"
 #include "oracle_segmenter.h"
 
@@ -48,6 +63,10 @@ struct Args {
   bool no_segmentation = false, deterministic = false, check_determinism = false, raw_trajectory = false;
   std::size_t max_frames = 0;
   int opencv_threads = -1;
+  bool realtime = false;
+  double segmenter_cost_ms = 0;
+  std::vector<std::string> variants;
+  int runs = 1;
   oracle::MaskMissOptions misses;
 };
 
@@ -68,6 +87,13 @@ Args parse(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--mask-miss-seed", a.misses.seed, "seed of the missed frames")->capture_default_str();
   app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
+  app.add_flag("--realtime", a.realtime, "pace frames by their timestamps, drop late ones");
+  app.add_option("--segmenter-cost-ms", a.segmenter_cost_ms, "with --oracle-masks: CPU ms each segmentation burns")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--variants", a.variants, "compare these in one run: off, sync, async (comma separated)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"off", "sync", "async"}));
+  app.add_option("--runs", a.runs, "with --variants: runs per variant (medians)")->check(CLI::PositiveNumber);
   app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
   app.add_flag("--raw-trajectory", a.raw_trajectory, "the tracked poses, not re-estimated against the final map");
   app.add_flag("--check-determinism", a.check_determinism, "run the deterministic mode twice and compare");
@@ -94,22 +120,139 @@ RunResult run_once(const Settings& settings, const Dataset& dataset, const Args&
     oracle::MaskMissOptions misses = a.misses;
     misses.fps = settings.fps > 0 ? settings.fps : 30.0;
     std::vector<bool> missed = oracle::choose_missed_frames(oracle::oracle_mask_files(a.oracle_masks).size(), misses);
-    options.system.segmenter_factory = [dir = a.oracle_masks, missed] {
-      return std::make_unique<oracle::OracleSegmenter>(dir, missed);
+    options.system.segmenter_factory = [dir = a.oracle_masks, missed, cost = a.segmenter_cost_ms] {
+      return std::make_unique<oracle::OracleSegmenter>(dir, missed, cost);
     };
   } else if (a.misses.rate > 0) {
     throw Error("--mask-miss-rate needs --oracle-masks DIR (the exact masks to miss)");
+  } else if (a.segmenter_cost_ms > 0) {
+    throw Error("--segmenter-cost-ms needs --oracle-masks DIR (YOLO costs what it costs)");
   }
+  options.realtime = a.realtime;
   options.system.deterministic = deterministic;
   options.system.trajectory_refinement.enabled = !a.raw_trajectory;
   if (a.max_frames > 0) options.max_frames = a.max_frames;
   return run_dataset(settings, dataset, options);
 }
 
+std::optional<double> ate_rmse(const Args& a, const Trajectory& estimate) {
+  fs::path gt = a.groundtruth;
+  if (gt.empty() && fs::exists(fs::path(a.input) / "groundtruth.txt")) gt = fs::path(a.input) / "groundtruth.txt";
+  if (gt.empty() || estimate.empty()) return std::nullopt;
+  try {
+    return evaluate(read_trajectory(gt), estimate, EvaluationOptions{}).ape_stats.rmse;
+  } catch (const Error& e) {  // e.g. a realtime run that tracked too few frames to align
+    std::printf("  no ATE: %s\n", e.what());
+    return std::nullopt;
+  }
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One variant's figures of one run.
+std::map<std::string, double> variant_figures(const Args& a, const RunResult& r) {
+  const RunSummary s = summarize_run(r.frames);
+  const RealtimeSummary rt = summarize_realtime(r);
+  std::map<std::string, double> f{{"fps", rt.fps},
+                                  {"frame_ms_median", s.total_ms.median},
+                                  {"frame_cpu_ms_median", s.total_cpu_ms.median},
+                                  {"latency_ms_median", rt.latency_ms.median},
+                                  {"latency_ms_p95", rt.latency_ms.p95},
+                                  {"dropped_share", rt.dropped_share},
+                                  {"cpu_ms_per_frame", rt.cpu_ms_per_frame},
+                                  {"mapping_cpu_ms_per_frame", rt.mapping_cpu_ms_per_frame},
+                                  {"tracked_share", s.tracked_ratio()},
+                                  {"mean_mask_age", rt.mean_mask_age},
+                                  {"frames_waited", static_cast<double>(rt.waited_frames)},
+                                  {"segmentation_skips", static_cast<double>(rt.segmentation_skips)},
+                                  {"keyframes", static_cast<double>(r.keyframes.size())}};
+  if (const auto ate = ate_rmse(a, r.trajectory)) f["ate_rmse"] = *ate;
+  return f;
+}
+
+// --variants: every variant --runs times, interleaved (load hits all alike), medians.
+int bench_variants(const Args& a, const Settings& settings, const Dataset& dataset) {
+  std::map<std::string, std::map<std::string, std::vector<double>>> figures;  // variant -> figure -> runs
+  for (int run = 0; run < a.runs; ++run) {
+    for (const std::string& variant : a.variants) {
+      Args va = a;
+      va.no_segmentation = variant == "off";
+      Settings vs = settings;
+      if (variant != "off") {
+        vs.segmentation.enabled = true;
+        vs.segmentation.mode = variant == "async" ? SegmentationMode::Async : SegmentationMode::Sync;
+      }
+      const RunResult r = run_once(vs, dataset, va, a.deterministic);
+      if (r.error) std::printf("run ended early: %s\n", r.error->c_str());
+      for (const auto& [name, value] : variant_figures(a, r)) figures[variant][name].push_back(value);
+      std::printf("  run %d %-5s fps %6.1f  frame median %6.1f ms  dropped %5.1f %%  cpu/frame %6.1f ms  ATE %s\n",
+                  run + 1, variant.c_str(), figures[variant]["fps"].back(), figures[variant]["frame_ms_median"].back(),
+                  100 * figures[variant]["dropped_share"].back(), figures[variant]["cpu_ms_per_frame"].back(),
+                  figures[variant].count("ate_rmse") ? std::to_string(figures[variant]["ate_rmse"].back()).c_str()
+                                                     : "-");
+      std::fflush(stdout);
+    }
+  }
+  nlohmann::json out;
+  out["input"] = a.input;
+  out["realtime"] = a.realtime;
+  out["deterministic"] = a.deterministic;
+  out["runs"] = a.runs;
+  out["segmenter_cost_ms"] = a.segmenter_cost_ms;
+  std::printf("%s (%s, %s, %s, medians of %d runs)\n", a.input.c_str(), to_string(dataset.sensor()),
+              a.realtime ? "--realtime" : "offline throughput", a.deterministic ? "deterministic" : "concurrent",
+              a.runs);
+  std::printf("  %-6s %7s %9s %9s %9s %9s %8s %9s %9s %8s %9s %7s\n", "", "fps", "frame ms", "frameCPU", "lat p50",
+              "lat p95", "drop %", "CPU/fr", "map CPU", "age", "waited", "ATE");
+  for (const std::string& variant : a.variants) {
+    if (out["variants"].contains(variant)) continue;
+    nlohmann::json v;
+    for (auto& [name, values] : figures[variant]) {
+      v["median"][name] = median(values);
+      v["runs"][name] = values;
+    }
+    auto m = [&](const char* name) { return figures[variant].count(name) ? median(figures[variant][name]) : -1.0; };
+    std::printf("  %-6s %7.1f %9.1f %9.1f %9.1f %9.1f %8.1f %9.1f %9.1f %8.2f %9.0f %7.4f\n", variant.c_str(),
+                m("fps"), m("frame_ms_median"), m("frame_cpu_ms_median"), m("latency_ms_median"), m("latency_ms_p95"),
+                100 * m("dropped_share"), m("cpu_ms_per_frame"), m("mapping_cpu_ms_per_frame"), m("mean_mask_age"),
+                m("frames_waited"), m("ate_rmse"));
+    out["variants"][variant] = v;
+  }
+  auto ratio = [&](const std::string& x, const std::string& y, const char* name) -> std::optional<double> {
+    if (!figures.count(x) || !figures.count(y) || !figures[x].count(name) || !figures[y].count(name)) return {};
+    const double d = median(figures[y][name]);
+    if (d <= 0) return {};
+    return median(figures[x][name]) / d;
+  };
+  for (const char* on : {"sync", "async"}) {
+    if (const auto r = ratio(on, "off", "frame_ms_median")) {
+      std::printf("  frame time %s / off: %.2f (wall median)", on, *r);
+      out["ratios"][std::string(on) + "_over_off_frame_ms"] = *r;
+      if (const auto c = ratio(on, "off", "cpu_ms_per_frame")) {
+        std::printf(", process CPU/frame %.2f", *c);
+        out["ratios"][std::string(on) + "_over_off_cpu_per_frame"] = *c;
+      }
+      std::printf("\n");
+    }
+  }
+  if (const auto r = ratio("async", "sync", "ate_rmse")) {
+    std::printf("  ATE async / sync: %.3f\n", *r);
+    out["ratios"]["async_over_sync_ate"] = *r;
+  }
+  if (!a.json.empty()) std::ofstream(a.json) << json_text(out, 1) << "\n";
+  return 0;
+}
+
 int bench(const Args& a) {
   if (a.opencv_threads >= 0) cv::setNumThreads(a.opencv_threads);
   const Settings settings = load_settings(a.config);
   const auto dataset = open_dataset(a.input, settings);
+  if (!a.variants.empty()) return bench_variants(a, settings, *dataset);
   const RunResult r = run_once(settings, *dataset, a, a.deterministic);
   if (r.error) std::printf("run ended early: %s\n", r.error->c_str());
   const RunSummary s = summarize_run(r.frames);
@@ -142,6 +285,13 @@ int bench(const Args& a) {
               r.mapper.keyframes, r.mapper.bundle_adjustments, r.mapper.bundle_adjustments_aborted,
               r.mapper.keyframes ? r.mapper.bundle_adjustment_ms / r.mapper.keyframes : 0.0,
               r.mapper.keyframes ? r.mapper.total_ms / r.mapper.keyframes : 0.0);
+  const RealtimeSummary rt = summarize_realtime(r);
+  std::printf("  %.1f fps sustained, latency median %.1f / p95 %.1f ms, dropped %zu (%.1f %%), CPU %.1f ms/frame "
+              "(mapping %.1f); masks: %zu fresh, %zu carried (mean age %.2f), %zu waited, %zu skipped\n",
+              rt.fps, rt.latency_ms.median, rt.latency_ms.p95, rt.dropped_frames, 100 * rt.dropped_share,
+              rt.cpu_ms_per_frame, rt.mapping_cpu_ms_per_frame, rt.fresh_masks, rt.carried_masks, rt.mean_mask_age,
+              rt.waited_frames, rt.segmentation_skips);
+  out["realtime"] = to_json(rt);
   std::printf("  wall %.1f s\n", r.wall_seconds);
   out["extraction_cpu_share"] = cpu_share;
 

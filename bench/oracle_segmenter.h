@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/segmenter.h"
 
@@ -55,16 +56,21 @@ inline std::vector<bool> choose_missed_frames(std::size_t frames, const MaskMiss
   return missed;
 }
 
-// The k-th call returns the k-th ground-truth mask as one "person" (frames are
-// segmented in order and none is dropped outside realtime mode); a missed
-// frame returns no detection.
+// Frame k's ground-truth mask as one "person" (segment_frame; segment()
+// counts calls for callers without frame indices); a missed frame returns no
+// detection. cost_ms > 0: each call first burns that much CPU time of its
+// thread, so asynchronous timing is realistic without the model (the
+// measured YOLO CPU time per frame).
 class OracleSegmenter : public Segmenter {
  public:
-  explicit OracleSegmenter(const std::filesystem::path& sequence, std::vector<bool> missed = {})
-      : files_(oracle_mask_files(sequence)), missed_(std::move(missed)) {}
-  std::vector<Detection> segment(const cv::Mat& bgr) override {
-    if (next_ >= files_.size()) throw Error("--oracle-masks: more frames than masks");
-    const std::size_t k = next_++;
+  explicit OracleSegmenter(const std::filesystem::path& sequence, std::vector<bool> missed = {}, double cost_ms = 0)
+      : files_(oracle_mask_files(sequence)), missed_(std::move(missed)), cost_ms_(cost_ms) {}
+  std::vector<Detection> segment(const cv::Mat& bgr) override { return segment_frame(bgr, next_++); }
+  std::vector<Detection> segment_frame(const cv::Mat& bgr, std::size_t k) override {
+    if (k >= files_.size()) throw Error("--oracle-masks: more frames than masks");
+    const ThreadCpuStopwatch cost;
+    while (cost.elapsed_ms() < cost_ms_) {
+    }
     if (k < missed_.size() && missed_[k]) return {};
     const std::filesystem::path& file = files_[k];
     const cv::Mat1b mask = cv::imread(file.string(), cv::IMREAD_GRAYSCALE) > 0;
@@ -82,6 +88,7 @@ class OracleSegmenter : public Segmenter {
  private:
   std::vector<std::filesystem::path> files_;
   std::vector<bool> missed_;
+  double cost_ms_ = 0;
   std::size_t next_ = 0;
 };
 

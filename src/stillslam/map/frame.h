@@ -54,6 +54,10 @@ class Frame {
   const cv::Mat1b& dynamic_mask() const { return dynamic_mask_; }
   float masked_fraction() const { return masked_fraction_; }
   void set_dynamic_mask(cv::Mat1b mask);
+  // Input frames between the segmented frame the mask comes from and this
+  // one (0: this frame's own segmentation; -1: no segmentation).
+  int mask_age() const { return mask_age_; }
+  void set_mask_age(int age) { mask_age_ = age; }
 
   // Matched map points and outlier flags.
   const MapPointPtr& map_point(std::size_t i) const { return map_points_[i]; }
@@ -89,6 +93,7 @@ class Frame {
   std::shared_ptr<KeyFrame> reference_keyframe_;
   cv::Mat1b dynamic_mask_;
   float masked_fraction_ = 0;
+  int mask_age_ = -1;
 };
 
 }  // namespace stillslam

@@ -4,6 +4,8 @@
 
 namespace stillslam {
 
+const char* to_string(SegmentationMode mode) { return mode == SegmentationMode::Async ? "async" : "sync"; }
+
 void SegmentationOptions::check() const {
   using namespace option_check;
   if (classes.empty()) throw OptionError("SegmentationOptions.classes", "empty", "must name at least one class");
@@ -13,6 +15,15 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.mask_dilation", mask_dilation, 0);
   at_least("SegmentationOptions.hold_frames", hold_frames, 0);
   at_least("SegmentationOptions.threads", threads, 0);
+  at_least("SegmentationOptions.interval", interval, 1);
+  at_least("SegmentationOptions.max_mask_age", max_mask_age, 0);
+  at_least("SegmentationOptions.keyframe_mask_age", keyframe_mask_age, 0);
+  at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
+  at_least("SegmentationOptions.urgent_inliers", urgent_inliers, 0);
+  if (modelled_latency > max_mask_age) {
+    throw OptionError("SegmentationOptions.modelled_latency", option_check::text(modelled_latency),
+                      "must be at most max_mask_age (" + option_check::text(max_mask_age) + ")");
+  }
 }
 
 }  // namespace stillslam

@@ -4,6 +4,12 @@
 
 namespace stillslam {
 
+enum class SegmentationMode {
+  Sync,   // every frame waits for its own mask (segmentation_worker.h)
+  Async,  // own rate on the newest frame, masks carried between (segmentation_stage.h, async_masks.h)
+};
+const char* to_string(SegmentationMode mode);
+
 // Segmentation.* settings.
 struct SegmentationOptions {
   bool enabled = true;                        // Segmentation.enabled
@@ -27,6 +33,23 @@ struct SegmentationOptions {
   // Segmentation.agnosticNms: let a box suppress overlapping boxes of any class (the
   // default is class-aware NMS, so a "truck" box over a "bus" survives).
   bool agnostic_nms = false;
+  // Segmentation.mode: sync or async.
+  SegmentationMode mode = SegmentationMode::Sync;
+  // Async: Segmentation.interval, a frame is segmented at least every this many frames.
+  int interval = 3;
+  // Async: Segmentation.maxMaskAge, a frame whose newest mask is older (in
+  // input frames) waits for a fresh one.
+  int max_mask_age = 15;
+  // Async: Segmentation.keyframeMaskAge, tracking makes no keyframe from a
+  // frame whose mask is older; it asks for the next segmentation slot.
+  int keyframe_mask_age = 6;
+  // Async with --deterministic: Segmentation.modelledLatency, the mask of
+  // frame k is usable from frame k + this on (the segmenter's time in frames),
+  // independent of timing.
+  int modelled_latency = 3;
+  // Async: Segmentation.urgentInliers, a frame tracked with fewer map-point
+  // inliers asks for the next segmentation slot. 0: never.
+  int urgent_inliers = 50;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

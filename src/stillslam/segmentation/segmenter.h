@@ -1,6 +1,7 @@
 #pragma once
 #include <opencv2/core.hpp>
 
+#include <cstddef>
 #include <vector>
 
 #include "stillslam/segmentation/detection.h"
@@ -15,6 +16,13 @@ class Segmenter {
   // bgr: 8UC3 BGR (8UC1 gray is replicated to three channels, 8UC4 BGRA drops
   // alpha). Any other type or an empty image throws stillslam::Error.
   virtual std::vector<Detection> segment(const cv::Mat& bgr) = 0;
+  // The same for the input's frame `frame_index` (dataset order). Segmenters
+  // that read precomputed masks (bench's oracle) need the index because the
+  // asynchronous stage skips frames; a model ignores it.
+  virtual std::vector<Detection> segment_frame(const cv::Mat& bgr, std::size_t frame_index) {
+    (void)frame_index;
+    return segment(bgr);
+  }
 };
 
 }  // namespace stillslam

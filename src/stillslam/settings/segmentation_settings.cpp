@@ -61,6 +61,15 @@ std::string read_model(SectionKeys& keys, bool enabled, const std::filesystem::p
   return path.lexically_normal().string();
 }
 
+SegmentationMode read_mode(SectionKeys& keys, SegmentationMode current) {
+  const cv::FileNode n = keys.node("mode");
+  if (n.isNone()) return current;
+  const std::string value = n.isString() ? trim(static_cast<std::string>(n)) : std::string();
+  if (value == "sync") return SegmentationMode::Sync;
+  if (value == "async") return SegmentationMode::Async;
+  keys.fail("mode", "must be sync (every frame waits for its mask) or async (own rate, masks carried between)");
+}
+
 }  // namespace
 
 void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
@@ -77,6 +86,12 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("threads", options.threads, "SegmentationOptions.threads", thread_limits(0));
   keys.flag("masksForClassesOnly", options.masks_for_classes_only);
   keys.flag("agnosticNms", options.agnostic_nms);
+  options.mode = read_mode(keys, options.mode);
+  keys.integer("interval", options.interval, "SegmentationOptions.interval", {1, 1000});
+  keys.integer("maxMaskAge", options.max_mask_age, "SegmentationOptions.max_mask_age", {0, 1000});
+  keys.integer("keyframeMaskAge", options.keyframe_mask_age, "SegmentationOptions.keyframe_mask_age", {0, 1000});
+  keys.integer("modelledLatency", options.modelled_latency, "SegmentationOptions.modelled_latency", {0, 1000});
+  keys.integer("urgentInliers", options.urgent_inliers, "SegmentationOptions.urgent_inliers", {0, 100000});
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

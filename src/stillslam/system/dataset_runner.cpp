@@ -7,6 +7,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/scope_exit.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/system/process_cpu_time.h"
 
 namespace stillslam {
 
@@ -54,9 +55,13 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
 
   auto load = [&dataset](std::size_t i) { return dataset.load(i); };
   std::future<SensorFrame> next;
+  std::size_t next_index = first;  // the frame `next` loads
   if (n > first) next = std::async(std::launch::async, load, first);
   const double t0 = n > first ? dataset.timestamp(first) : 0.0;
   double paused_seconds = 0;
+  const double loop_start = wall.elapsed_ms() / 1000.0;
+  const double cpu_start = process_cpu_seconds();
+  double loop_end = loop_start;
   try {
     for (std::size_t i = first; i < n; ++i) {
       if (options.stop != nullptr && options.stop->load()) {
@@ -71,25 +76,44 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
         }
         paused_seconds += held.elapsed_ms() / 1000.0;  // not late: realtime pacing starts again
       }
+      if (options.realtime) {
+        // A live camera: the newest frame that has arrived is taken, the ones
+        // before it that the system was too busy for are dropped (and never loaded).
+        const double now = wall.elapsed_ms() / 1000.0 - paused_seconds - loop_start;
+        std::size_t newest = i;
+        while (newest + 1 < n && dataset.timestamp(newest + 1) - t0 <= now) ++newest;
+        out.dropped_frames += newest - i;
+        i = newest;
+      }
+      if (next_index != i) {
+        try {
+          next.wait();
+        } catch (...) {
+        }
+        next = std::async(std::launch::async, load, i);
+      }
       SensorFrame frame = next.get();
       if (i + 1 < n) next = std::async(std::launch::async, load, i + 1);
+      next_index = i + 1;
+      // When the frame arrived, on the wall clock minus pauses.
+      double arrival = wall.elapsed_ms() / 1000.0 - paused_seconds;
       if (options.realtime) {
-        const double due = dataset.timestamp(i) - t0;
-        const double now = wall.elapsed_ms() / 1000.0 - paused_seconds;
-        if (i + 1 < n && now > dataset.timestamp(i + 1) - t0) {
-          ++out.dropped_frames;
-          continue;
-        }
-        if (due > now) std::this_thread::sleep_for(std::chrono::duration<double>(due - now));
+        const double due = dataset.timestamp(i) - t0 + loop_start;
+        if (due > arrival) std::this_thread::sleep_for(std::chrono::duration<double>(due - arrival));
+        arrival = due;
       }
       if (!frame.valid) continue;
       FrameStats stats = system.process(frame);
+      loop_end = wall.elapsed_ms() / 1000.0 - paused_seconds;
+      stats.latency_ms = 1000.0 * (loop_end - arrival);
       if (options.on_frame) options.on_frame(stats, system);
       out.frames.push_back(std::move(stats));
     }
   } catch (const Error& e) {
     out.error = e.what();
   }
+  out.processing_seconds = loop_end - loop_start;
+  out.process_cpu_seconds = process_cpu_seconds() - cpu_start;
   if (next.valid()) {
     try {
       next.wait();

@@ -25,7 +25,8 @@ struct RunOptions {
   // stopped early (interrupted, input error).
   std::filesystem::path save_map;
   // Pace frames by their timestamps; frames whose time has passed while the
-  // system was busy are dropped, as with a live camera.
+  // system was busy are dropped (not even loaded), as with a live camera
+  // whose newest frame is taken.
   bool realtime = false;
   // Checked before each frame (also before the first one: a stop requested
   // while the system was being built ends the run with no frame processed).
@@ -65,6 +66,10 @@ struct RunResult {
   bool interrupted = false;
   std::optional<std::string> error;  // the Error that ended the run early
   double wall_seconds = 0;
+  // From the first frame taken to the end of the last one's process(), and
+  // the CPU time of the whole process (every thread) meanwhile.
+  double processing_seconds = 0;
+  double process_cpu_seconds = 0;
   std::size_t map_points = 0;
   std::size_t maps = 1;           // at the end (after merges)
   int new_maps = 0;               // started because tracking stayed lost

@@ -18,6 +18,7 @@ struct FrameStats {
   int matches = 0;
   int inliers = 0;
   bool keyframe = false;
+  bool keyframe_deferred = false;  // due, but the mask was older than Segmentation.keyframeMaskAge
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
   double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)
   double total_ms = 0;     // frame builder + tracker (+ synchronous mapping)
@@ -25,6 +26,10 @@ struct FrameStats {
   double total_cpu_ms = 0;     // CPU time of the calling thread for the whole frame
                                // (without the segmentation worker / right-image thread)
   double publish_ms = 0;       // snapshots for the publish layer, after total_ms
+  // Frame arrival to pose (dataset runner): from when the frame was due
+  // (--realtime: its timestamp; else when the runner took it) to the end of
+  // process().
+  double latency_ms = 0;
   bool has_pose = false;
   std::uint64_t map_id = 0;  // the active map after tracking (atlas)
   bool new_map = false;      // a new map starts with the next frame

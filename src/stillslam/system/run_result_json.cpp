@@ -1,5 +1,6 @@
 #include "stillslam/system/run_result_json.h"
 
+#include "stillslam/system/realtime_summary.h"
 #include "stillslam/system/run_summary.h"
 
 namespace stillslam {
@@ -17,6 +18,7 @@ nlohmann::json run_result_json(const RunResult& result, const std::vector<std::s
   summary["new_maps"] = result.new_maps;
   summary["relocalizations"] = result.relocalizations;
   if (result.error) summary["error"] = *result.error;
+  summary["realtime"] = to_json(summarize_realtime(result));
   stats["end"] = {{"reason", to_string(result.end)},
                   {"frames_processed", result.frames.size()},
                   {"frames_in_input", result.frames_in_input}};

@@ -95,21 +95,39 @@ void System::build_pipeline(const Settings& settings) {
   const WorkerMode mode = options_.deterministic ? WorkerMode::Synchronous : WorkerMode::Threaded;
 
   // 1. Segmentation (own thread): the colour image in, the dynamic mask out.
+  // Sync: each frame waits for its own mask. Async: a stage at its own rate
+  // on the newest frame it is given, masks carried to the frames between.
+  const bool async = settings.segmentation.mode == SegmentationMode::Async;
   if (options_.use_segmentation && settings.segmentation.enabled) {
     dynamic_class_ids_ = resolve_class_ids(settings.segmentation.classes);
     std::unique_ptr<Segmenter> segmenter = options_.segmenter_factory
                                                ? options_.segmenter_factory()
                                                : std::make_unique<YoloSegmenter>(settings.segmentation);
-    segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter),
-                                                         dynamic_class_ids_,
-                                                         settings.segmentation.mask_dilation,
-                                                         MaskHoldOptions{.frames = settings.segmentation.hold_frames});
+    const MaskHoldOptions hold{.frames = settings.segmentation.hold_frames};
+    if (async) {
+      segmentation_stage_ = std::make_unique<SegmentationStage>(
+          DynamicMaskMaker(std::move(segmenter), dynamic_class_ids_, settings.segmentation.mask_dilation, hold),
+          mode == WorkerMode::Threaded);
+      const PinholeCamera& camera = setup_->camera;
+      MaskPropagator propagator(MaskPropagationCamera{camera.fx(), camera.fy(), camera.cx(), camera.cy()},
+                                settings.mask_propagation);
+      async_masks_ = std::make_unique<AsyncMasks>(*segmentation_stage_, AsyncMaskOptions::from(settings.segmentation),
+                                                  std::move(propagator), settings.segmentation.mask_dilation);
+      urgent_inliers_ = settings.segmentation.urgent_inliers;
+    } else {
+      segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
+                                                           settings.segmentation.mask_dilation, hold);
+    }
   }
 
   // 2. Frame building (tracking thread): ORB outside the mask, stereo / depth association.
   StereoMatchOptions stereo_matching;
   stereo_matching.flow_for_unmatched = settings.stereo_flow_matching;
-  builder_ = std::make_unique<FrameBuilder>(setup_, sensor_, settings.orb, segmentation_.get(), stereo_matching);
+  if (async_masks_) {
+    builder_ = std::make_unique<FrameBuilder>(setup_, sensor_, settings.orb, async_masks_.get(), stereo_matching);
+  } else {
+    builder_ = std::make_unique<FrameBuilder>(setup_, sensor_, settings.orb, segmentation_.get(), stereo_matching);
+  }
 
   Map& map = atlas_->active_map();
   // 5. Loop closing (own thread, with a vocabulary): keyframes from local
@@ -170,6 +188,7 @@ void System::build_pipeline(const Settings& settings) {
   TrackerOptions tracking = settings.tracking;
   tracking.localization_only = options_.localization_only;
   tracking.probe = options_.tracking_probe;
+  if (async_masks_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 
@@ -240,6 +259,7 @@ void System::shutdown() {
   mapper_->stop();
   if (loop_closer_) loop_closer_->stop();
   if (segmentation_) segmentation_->stop();
+  if (segmentation_stage_) segmentation_stage_->stop();
 }
 
 void System::start_new_map() {
@@ -322,6 +342,26 @@ FrameStats System::process(const SensorFrame& input) {
   stats.matches = result.matches;
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
+  stats.keyframe_deferred = result.keyframe_deferred;
+  // A keyframe candidate or weak tracking gets the next segmentation slot.
+  const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
+  if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
+  if (async_masks_) {
+    std::optional<Eigen::Isometry3d> pose;
+    if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();
+    cv::Mat1f sparse_depth;
+    if (sensor_ == SensorType::Stereo) {
+      // Mask propagation from this frame, if it was segmented, needs depth.
+      sparse_depth = cv::Mat1f::zeros(input.gray.size());
+      for (std::size_t i = 0; i < frame.size(); ++i) {
+        const cv::Point p = frame.keypoints_raw()[i].pt;
+        if (frame.depth(i) > 0 && p.inside(cv::Rect(0, 0, sparse_depth.cols, sparse_depth.rows))) {
+          sparse_depth(p) = frame.depth(i);
+        }
+      }
+    }
+    async_masks_->on_tracked(input.index, pose, std::move(sparse_depth));
+  }
   stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {

@@ -42,6 +42,8 @@
 #include "stillslam/map/map_file.h"
 #include "stillslam/mapping/local_mapper.h"
 #include "stillslam/publish/publisher.h"
+#include "stillslam/segmentation/async_masks.h"
+#include "stillslam/segmentation/segmentation_stage.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/system/frame_stats.h"
 #include "stillslam/system/trajectory_refinement.h"
@@ -150,7 +152,7 @@ class System {
   // (shutdown()): call it at the end of a run. Throws Error when the file
   // can't be written.
   MapFileStats save_map(const std::filesystem::path& path);
-  bool segmentation_enabled() const { return segmentation_ != nullptr; }
+  bool segmentation_enabled() const { return segmentation_ != nullptr || async_masks_ != nullptr; }
   // The snapshots posted after each frame, for readers on other threads.
   const Publisher& publisher() const { return publisher_; }
 
@@ -191,7 +193,11 @@ class System {
   MapMergerOptions merger_options_;
   SensorType sensor_;
   std::shared_ptr<const CameraSetup> setup_;
-  std::unique_ptr<SegmentationWorker> segmentation_;
+  std::unique_ptr<SegmentationWorker> segmentation_;  // Segmentation.mode sync
+  // Segmentation.mode async: the stage and what the frame builder reads from it.
+  std::unique_ptr<SegmentationStage> segmentation_stage_;
+  std::unique_ptr<AsyncMasks> async_masks_;
+  int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;
   std::unique_ptr<Atlas> atlas_;

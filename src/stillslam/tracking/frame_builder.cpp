@@ -35,6 +35,12 @@ FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType 
   stereo_options_.check();
 }
 
+FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType sensor, const OrbOptions& orb,
+                           AsyncMasks* async_segmentation, StereoMatchOptions stereo_options)
+    : FrameBuilder(std::move(setup), sensor, orb, static_cast<SegmentationWorker*>(nullptr), stereo_options) {
+  async_ = async_segmentation;
+}
+
 Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, FrameBuildStats* stats,
                           FrameDynamics* dynamics) const {
   Stopwatch total;
@@ -50,12 +56,10 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
   }
 
   // 1. Segmentation starts first, on its own thread.
+  cv::Mat color = input.color;
+  if (color.empty() && segmentation_enabled()) cv::cvtColor(input.gray, color, cv::COLOR_GRAY2BGR);
   std::future<SegmentationResult> mask_future;
-  if (segmentation_ != nullptr) {
-    cv::Mat color = input.color;
-    if (color.empty()) cv::cvtColor(input.gray, color, cv::COLOR_GRAY2BGR);
-    mask_future = segmentation_->submit(color);
-  }
+  if (segmentation_ != nullptr) mask_future = segmentation_->submit(color, input.index);
 
   // 2. ORB on the right image (second core) starts at once. The left image
   // waits for the dynamic mask and is extracted outside it, so its whole
@@ -71,11 +75,29 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     SegmentationResult seg = mask_future.get();
     st.segmentation_wait_ms = wait.elapsed_ms();
     st.segmentation_ms = seg.time_ms;
+    st.segmentation_cpu_ms = seg.cpu_ms;
     st.detections = static_cast<int>(seg.detections.size());
     st.mask_coverage = seg.coverage;
     st.held_coverage = seg.held_coverage;
     exclude = std::move(seg.dynamic_mask);
+    st.mask_age = 0;
+    st.mask_waited = true;
     if (dynamics) dynamics->detections = std::move(seg.detections);
+  } else if (async_ != nullptr) {
+    // Waits only when the newest mask is too old (async_masks.h).
+    const FrameMask m = async_->mask_for(color, input.index, input.gray, input.depth);
+    st.segmentation_wait_ms = m.wait_ms;
+    st.segmentation_ms = m.age == 0 ? m.source->time_ms : 0;
+    st.segmentation_cpu_ms = m.age == 0 ? m.source->cpu_ms : 0;
+    st.detections = static_cast<int>(m.source->detections.size());
+    st.mask_coverage = m.age == 0 ? m.source->coverage : mask_coverage(m.mask);
+    st.held_coverage = m.source->held_coverage;
+    st.mask_age = m.age;
+    st.mask_waited = m.waited;
+    st.segmentation_request = m.scheduled;
+    st.segmentation_skips = async_->skipped();
+    exclude = m.mask;
+    if (dynamics) dynamics->detections = m.source->detections;
   }
   Stopwatch extraction;
   ThreadCpuStopwatch extraction_cpu;
@@ -124,6 +146,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
   Frame frame(frame_id, input.timestamp, setup_, std::move(left.keypoints), std::move(undistorted),
               std::move(left.descriptors), std::move(u_right), std::move(depth));
   frame.set_dynamic_mask(exclude);
+  frame.set_mask_age(st.mask_age);
   st.keypoints_with_depth = frame.num_with_depth();
   st.total_ms = total.elapsed_ms();
   return frame;

@@ -100,7 +100,12 @@ TrackingResult Tracker::track(Frame& frame) {
     } else {
       velocity_.reset();
     }
-    if (!options_.localization_only && need_new_keyframe(frame, result.inliers)) {
+    bool want_keyframe = !options_.localization_only && need_new_keyframe(frame, result.inliers);
+    if (want_keyframe && options_.max_keyframe_mask_age >= 0 && frame.mask_age() > options_.max_keyframe_mask_age) {
+      result.keyframe_deferred = true;  // no map points from a stale mask: a later frame
+      want_keyframe = false;
+    }
+    if (want_keyframe) {
       create_keyframe(frame);
       result.new_keyframe = true;
       if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);

@@ -35,6 +35,8 @@ struct TrackingResult {
   int matches = 0;     // matched map points before the final optimization
   int inliers = 0;     // map-point inliers after it
   bool new_keyframe = false;
+  // A keyframe was due but the frame's mask was too old (max_keyframe_mask_age).
+  bool keyframe_deferred = false;
   bool relocalized = false;  // recovered from Lost by relocalization (reason "relocalized")
   // When Ok: the frame's reference keyframe and its pose relative to it, taken
   // under the map lock (local BA may move the keyframe right after).

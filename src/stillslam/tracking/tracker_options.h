@@ -44,6 +44,11 @@ struct TrackerOptions {
   // Track against the map without changing it (a loaded map): no keyframes,
   // no map points; never initializes a map of its own.
   bool localization_only = false;
+  // No keyframe from a frame whose dynamic mask is older than this many
+  // input frames (Frame::mask_age; set by System from
+  // Segmentation.keyframeMaskAge in async mode); the keyframe is deferred to
+  // a later frame. -1: any age.
+  int max_keyframe_mask_age = -1;
   // Diagnostics only (tracking/tracking_probe.h): sees every stage's result.
   TrackingProbe probe;
   // Throws OptionError naming the field, its value and the valid range.

@@ -1,0 +1,138 @@
+// Masks per frame in Segmentation.mode async: the deterministic latency model
+// (the mask of frame k is usable from frame k + L on, whatever the timing),
+// the wait beyond the maximum age, and no wait on ordinary frames.
+#include "stillslam/segmentation/async_masks.h"
+
+#include <gtest/gtest.h>
+
+#include "segmentation/gated_segmenter.h"
+
+namespace stillslam {
+namespace {
+
+using test::Gate;
+using test::GatedSegmenter;
+
+cv::Mat image() { return cv::Mat(40, 60, CV_8UC3, cv::Scalar::all(50)); }
+
+std::unique_ptr<SegmentationStage> make_stage(std::shared_ptr<Gate> gate, bool threaded) {
+  return std::make_unique<SegmentationStage>(
+      DynamicMaskMaker(std::make_unique<GatedSegmenter>(std::move(gate)), {0}, 0, MaskHoldOptions{.frames = 0}),
+      threaded);
+}
+
+AsyncMaskOptions options(int interval, int latency, int max_age) {
+  AsyncMaskOptions o;
+  o.interval = interval;
+  o.modelled_latency = latency;
+  o.max_mask_age = max_age;
+  o.grow_px_per_frame = 0;  // the square stays where it was: its x names the source frame
+  return o;
+}
+
+TEST(AsyncMasks, DeterministicLatencyModel) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMasks masks(*stage, options(2, 3, 15));
+  std::vector<int> ages, sources;
+  std::vector<ScheduleReason> reasons;
+  for (std::size_t f = 0; f < 10; ++f) {
+    const FrameMask m = masks.mask_for(image(), f);
+    ages.push_back(m.age);
+    sources.push_back(test::square_x(m.mask));
+    reasons.push_back(m.scheduled);
+    EXPECT_EQ(m.waited, f == 0) << f;  // only the first frame has nothing to carry
+  }
+  // Frame 0 waits for its own mask; requests every 2 frames; the mask of
+  // frame k is used from frame k + 3 on.
+  EXPECT_EQ(ages, (std::vector<int>{0, 1, 2, 3, 4, 3, 4, 3, 4, 3}));
+  EXPECT_EQ(sources, (std::vector<int>{0, 0, 0, 0, 0, 2, 2, 4, 4, 6}));
+  using R = ScheduleReason;
+  EXPECT_EQ(reasons, (std::vector<R>{R::First, R::None, R::Interval, R::None, R::Interval, R::None, R::Interval,
+                                     R::None, R::Interval, R::None}));
+  EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 2, 4, 6, 8}));
+}
+
+TEST(AsyncMasks, TooOldAMaskMakesTheFrameWait) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMasks masks(*stage, options(2, 3, 3));
+  std::vector<int> ages;
+  std::vector<bool> waited;
+  for (std::size_t f = 0; f < 6; ++f) {
+    const FrameMask m = masks.mask_for(image(), f);
+    ages.push_back(m.age);
+    waited.push_back(m.waited);
+  }
+  // Frame 4 would carry frame 0's mask (age 4 > 3): it waits for the request
+  // of its own (made by the interval rule), which is then fresh.
+  EXPECT_EQ(ages, (std::vector<int>{0, 1, 2, 3, 0, 1}));
+  EXPECT_EQ(waited, (std::vector<bool>{true, false, false, false, true, false}));
+}
+
+TEST(AsyncMasks, AFrameTooOldWithNoRequestInFlightSubmitsItsOwn) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMasks masks(*stage, options(100, 0, 2));
+  EXPECT_EQ(masks.mask_for(image(), 0).age, 0);
+  EXPECT_EQ(masks.mask_for(image(), 2).age, 2);
+  const FrameMask m = masks.mask_for(image(), 3);
+  EXPECT_EQ(m.age, 0);
+  EXPECT_EQ(m.scheduled, ScheduleReason::Waiting);
+  EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 3}));
+}
+
+TEST(AsyncMasks, OrdinaryFramesDoNotWaitForABusySegmenter) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, true);
+  AsyncMasks masks(*stage, options(3, 0, 10));
+  EXPECT_EQ(masks.mask_for(image(), 0).age, 0);  // nothing to carry yet: waits
+  gate->close();
+  for (std::size_t f = 1; f <= 3; ++f) masks.mask_for(image(), f);  // frame 3 goes to the stage and blocks there
+  gate->wait_blocked();
+  for (std::size_t f = 4; f <= 9; ++f) {
+    const FrameMask m = masks.mask_for(image(), f);  // the stage is blocked: these return at once
+    EXPECT_FALSE(m.waited);
+    EXPECT_EQ(m.age, static_cast<int>(f));
+    EXPECT_EQ(test::square_x(m.mask), 0);
+  }
+  EXPECT_EQ(masks.skipped(), 1u);  // frames 6 and 9 were requested meanwhile: 9 replaced 6
+  gate->release();
+  stage->wait_for(9);
+  EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 3, 9}));
+  const FrameMask m = masks.mask_for(image(), 10);
+  EXPECT_EQ(m.age, 1);
+  EXPECT_EQ(test::square_x(m.mask), 9);
+  EXPECT_FALSE(gate->timed_out);
+}
+
+}  // namespace
+}  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+TEST(AsyncMasks, CarriedMasksGoThroughThePropagatorWhenGivenTheGreyImage) {
+  auto gate = std::make_shared<test::Gate>();
+  auto stage = make_stage(gate, false);
+  MaskPropagationOptions hold;
+  hold.mode = 0;  // no motion: the margin alone shows the propagator was used
+  hold.margin_px = 3;
+  hold.margin_px_per_frame = 1;
+  AsyncMasks masks(*stage, options(10, 0, 10), MaskPropagator(MaskPropagationCamera{50, 50, 30, 20}, hold), 0);
+  const cv::Mat1b gray(40, 60, uchar(50));
+  const FrameMask fresh = masks.mask_for(image(), 0, gray);
+  EXPECT_EQ(fresh.age, 0);
+  EXPECT_EQ(cv::countNonZero(fresh.mask), 100);  // the fresh 10x10 square as segmented
+  masks.on_tracked(0, Eigen::Isometry3d::Identity());
+  const FrameMask carried = masks.mask_for(image(), 2, gray);
+  EXPECT_EQ(carried.age, 2);
+  EXPECT_EQ(cv::countNonZero(carried.mask(cv::Rect(0, 0, 10, 10))), 100);
+  // Grown by the margin at age 2 (3 + 2 px): the square reaches about 14 px right and down.
+  EXPECT_GT(carried.mask(0, 13), 0);
+  EXPECT_EQ(carried.mask(0, 16), 0);
+  EXPECT_GT(carried.mask(13, 0), 0);
+}
+
+}  // namespace
+}  // namespace stillslam

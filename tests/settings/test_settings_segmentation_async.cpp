@@ -1,0 +1,82 @@
+// Segmentation.* keys of the asynchronous segmentation (issue #16).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/temp_dir.h"
+#include "stillslam/core/error.h"
+#include "stillslam/settings/settings.h"
+
+namespace stillslam {
+namespace {
+
+using test::TempDir;
+
+const std::string kTum = R"(%YAML:1.0
+Camera.fx: 517.3
+Camera.fy: 516.5
+Camera.cx: 318.6
+Camera.cy: 255.3
+Camera.k1: 0.0
+Camera.k2: 0.0
+Camera.p1: 0.0
+Camera.p2: 0.0
+Camera.width: 640
+Camera.height: 480
+Camera.fps: 30.0
+Camera.bf: 40.0
+Camera.RGB: 1
+ThDepth: 40.0
+DepthMapFactor: 5000.0
+Segmentation.model: "/abs/model.onnx"
+)";
+
+std::string load_error(TempDir& dir, const std::string& text) {
+  try {
+    load_settings(dir.write("bad.yaml", text));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
+  TempDir dir;
+  const Settings d = load_settings(dir.write("d.yaml", kTum));
+  EXPECT_EQ(d.segmentation.mode, SegmentationMode::Sync);
+  EXPECT_EQ(d.segmentation.interval, 3);
+  const Settings s = load_settings(dir.write(
+      "a.yaml", kTum + "Segmentation.mode: async\nSegmentation.interval: 5\nSegmentation.maxMaskAge: 12\n"
+                       "Segmentation.keyframeMaskAge: 4\nSegmentation.modelledLatency: 2\n"
+                       "Segmentation.urgentInliers: 70\n"));
+  EXPECT_EQ(s.segmentation.mode, SegmentationMode::Async);
+  EXPECT_EQ(s.segmentation.interval, 5);
+  EXPECT_EQ(s.segmentation.max_mask_age, 12);
+  EXPECT_EQ(s.segmentation.keyframe_mask_age, 4);
+  EXPECT_EQ(s.segmentation.modelled_latency, 2);
+  EXPECT_EQ(s.segmentation.urgent_inliers, 70);
+}
+
+TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
+  TempDir dir;
+  struct Case {
+    std::string text, key, hint;
+  };
+  const std::vector<Case> cases{
+      {kTum + "Segmentation.mode: fast\n", "Segmentation.mode", "sync"},
+      {kTum + "Segmentation.mode: 1\n", "Segmentation.mode", "async"},
+      {kTum + "Segmentation.interval: 0\n", "Segmentation.interval", "is 0: must be in [1, 1000]"},
+      {kTum + "Segmentation.maxMaskAge: -1\n", "Segmentation.maxMaskAge", "is -1: must be in [0, 1000]"},
+      {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
+       "must be at most max_mask_age"},
+  };
+  for (const Case& c : cases) {
+    const std::string message = load_error(dir, c.text);
+    SCOPED_TRACE(c.key);
+    EXPECT_NE(message.find("'" + c.key + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find(c.hint), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace stillslam

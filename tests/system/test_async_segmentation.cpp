@@ -1,0 +1,116 @@
+// Segmentation.mode async through the whole system on a short generated
+// sequence, deterministic: the stats fields (mask age, fresh or carried,
+// requests, skips) per frame and in stats.json, no keyframe from a frame with
+// a mask older than the bound, and bit-for-bit repeatable runs.
+#include <gtest/gtest.h>
+
+#include "stillslam/system/realtime_summary.h"
+#include "stillslam/system/run_result_json.h"
+#include "stillslam/system/system.h"
+#include "system/sim_sequence.h"
+
+namespace stillslam {
+namespace {
+
+// One "person": a 40x40 square in the top-left corner of every frame.
+class CornerPerson final : public Segmenter {
+ public:
+  std::vector<Detection> segment(const cv::Mat& bgr) override {
+    Detection d;
+    d.class_id = 0;
+    d.class_name = "person";
+    d.score = 1.f;
+    d.box = cv::Rect2f(0, 0, 40, 40);
+    d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
+    d.mask(cv::Rect(0, 0, 40, 40)).setTo(255);
+    return {d};
+  }
+};
+
+const test::SimSequence& sequence() {
+  static const test::SimSequence seq = test::render_sim_sequence("walking_xyz", 60, 320, 240, false);
+  return seq;
+}
+
+RunResult run_async(const test::SimSequence& seq) {
+  Settings settings = seq.settings;
+  settings.tracking.init_min_keypoints = 300;
+  settings.segmentation.enabled = true;
+  settings.segmentation.mode = SegmentationMode::Async;
+  settings.segmentation.interval = 4;
+  settings.segmentation.modelled_latency = 2;
+  settings.segmentation.keyframe_mask_age = 2;
+  settings.segmentation.max_mask_age = 8;
+  SystemOptions options;
+  options.deterministic = true;
+  options.segmenter_factory = [] { return std::make_unique<CornerPerson>(); };
+  System system(settings, SensorType::Rgbd, seq.stereo, options);
+  RunResult out;
+  for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
+  system.shutdown();
+  collect_system_results(system, out);
+  return out;
+}
+
+TEST(AsyncSegmentation, StatsFieldsPerFrameAndInStatsJson) {
+  const RunResult r = run_async(sequence());
+  ASSERT_EQ(r.frames.size(), sequence().frames.size());
+  std::size_t fresh = 0, carried = 0, requests = 0, deferred = 0, keyframes = 0;
+  for (const FrameStats& f : r.frames) {
+    EXPECT_GE(f.build.mask_age, 0);
+    EXPECT_LE(f.build.mask_age, 8);
+    fresh += f.build.mask_age == 0;
+    carried += f.build.mask_age > 0;
+    requests += f.build.segmentation_request != ScheduleReason::None;
+    deferred += f.keyframe_deferred;
+    keyframes += f.keyframe;
+    if (f.keyframe && f.reason != "initialized") {
+      EXPECT_LE(f.build.mask_age, 2) << "keyframe from an old mask, frame " << f.index;
+    }
+    EXPECT_EQ(f.build.segmentation_skips, 0u);  // deterministic: nothing is skipped
+  }
+  EXPECT_EQ(r.frames[0].build.mask_age, 0);
+  EXPECT_TRUE(r.frames[0].build.mask_waited);
+  EXPECT_GT(carried, fresh);
+  EXPECT_GE(requests, sequence().frames.size() / 4);
+  EXPECT_GE(keyframes, 2u);
+  EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
+
+  const nlohmann::json stats = run_result_json(r, {});
+  const nlohmann::json& frames = stats["frames"];
+  ASSERT_EQ(frames.size(), r.frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i]["mask_age"].get<int>(), r.frames[i].build.mask_age);
+    EXPECT_EQ(frames[i]["mask_fresh"].get<bool>(), r.frames[i].build.mask_age == 0);
+    EXPECT_EQ(frames[i]["segmentation_request"].get<std::string>(),
+              to_string(r.frames[i].build.segmentation_request));
+    EXPECT_EQ(frames[i]["keyframe_deferred"].get<bool>(), r.frames[i].keyframe_deferred);
+    EXPECT_TRUE(frames[i]["times_ms"].contains("latency"));
+  }
+  const nlohmann::json& masks = stats["summary"]["realtime"]["masks"];
+  EXPECT_EQ(masks["fresh"].get<std::size_t>(), fresh);
+  EXPECT_EQ(masks["carried"].get<std::size_t>(), carried);
+  EXPECT_EQ(masks["segmentation_requests"].get<std::size_t>(), requests);
+  EXPECT_EQ(masks["keyframes_deferred"].get<std::size_t>(), deferred);
+  EXPECT_EQ(masks["segmentation_skips"].get<std::size_t>(), 0u);
+  EXPECT_TRUE(stats["summary"]["realtime"].contains("fps"));
+  EXPECT_TRUE(stats["summary"]["realtime"]["latency_ms"].contains("p95"));
+  EXPECT_TRUE(stats["summary"]["realtime"].contains("cpu_ms_per_frame"));
+}
+
+TEST(AsyncSegmentation, DeterministicRunsRepeatBitForBit) {
+  const RunResult a = run_async(sequence());
+  const RunResult b = run_async(sequence());
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (std::size_t i = 0; i < a.frames.size(); ++i) {
+    EXPECT_EQ(a.frames[i].build.mask_age, b.frames[i].build.mask_age) << i;
+    EXPECT_EQ(a.frames[i].keyframe, b.frames[i].keyframe) << i;
+  }
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_TRUE(a.trajectory[i].T_world_cam.matrix() == b.trajectory[i].T_world_cam.matrix()) << i;
+  }
+}
+
+}  // namespace
+}  // namespace stillslam
