@@ -19,8 +19,8 @@ namespace stillslam {
 struct StaticEvidenceOptions {
   // Tracking.staticEvidencePose: 0 off (all matches move the pose, ORB-SLAM's
   // rule). On by default: on the issue #20 renders it took --no-segmentation
-  // from 0.48-0.78 m to 6-370 mm at 0.92-1.04x on the static twins and with
-  // masks (bench/README.md).
+  // from 0.12-0.78 m to 6-370 mm, at 0.85-1.07x on the static twins and
+  // 0.93-1.04x with masks (bench/README.md).
   bool enabled = true;
   // Tracking.staticEvidenceSpan: a map point has static evidence when the
   // keyframes observing it span at least this many frames.
