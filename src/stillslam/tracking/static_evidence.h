@@ -20,7 +20,7 @@ struct StaticEvidenceOptions {
   // Tracking.staticEvidencePose: 0 off (all matches move the pose, ORB-SLAM's
   // rule). On by default: on the issue #20 renders it took --no-segmentation
   // from 0.12-0.78 m to 6-370 mm, at 0.85-1.07x on the static twins and
-  // 0.93-1.04x with masks (bench/README.md).
+  // 0.93-1.05x with masks (bench/README.md).
   bool enabled = true;
   // Tracking.staticEvidenceSpan: a map point has static evidence when the
   // keyframes observing it span at least this many frames.
