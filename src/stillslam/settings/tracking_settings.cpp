@@ -47,6 +47,11 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("poseRounds", tracker.pose.rounds, "PoseOptimizerOptions.rounds", {1, 100});
   keys.integer("poseIterations", tracker.pose.iterations_per_round,
                "PoseOptimizerOptions.iterations_per_round", {1, 1000});
+  keys.flag("staticEvidencePose", tracker.static_evidence.enabled);
+  keys.integer("staticEvidenceSpan", tracker.static_evidence.min_span_frames,
+               "StaticEvidenceOptions.min_span_frames", {0, 100000});
+  keys.integer("staticEvidenceMinPoints", tracker.static_evidence.min_points,
+               "StaticEvidenceOptions.min_points", {3, 50000});
   keys.check([&] { tracker.check(); });
   // Relocalization.
   keys.integer("relocMinBowMatches", relocalizer.min_bow_matches, "RelocalizerOptions.min_bow_matches", {1, 50000});

@@ -9,6 +9,7 @@
 #include "stillslam/tracking/keyframe_admission.h"
 #include "stillslam/tracking/local_map.h"
 #include "stillslam/tracking/pose_refinement.h"
+#include "stillslam/tracking/static_evidence.h"
 
 namespace stillslam {
 
@@ -230,7 +231,7 @@ bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
     result.reason = "motion model: " + std::to_string(matches) + " matches";
     return false;
   }
-  refine_pose(frame, options_.pose);
+  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
   if (options_.probe) options_.probe(TrackingStage::MotionModel, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
@@ -272,7 +273,7 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
     result.reason = "reference keyframe: " + std::to_string(matches) + " matches";
     return false;
   }
-  refine_pose(frame, options_.pose);
+  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
   if (options_.probe) options_.probe(TrackingStage::ReferenceKeyFrame, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
@@ -325,7 +326,7 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
   const bool recovering = was_lost_ && frame.id() < last_lost_frame_id_ + 2;
   search_points(frame, local.points, recovering ? 5.f : options_.local_map_search_th);
   result.matches = frame.num_matches();
-  refine_pose(frame, options_.pose);
+  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
   if (options_.probe) options_.probe(TrackingStage::LocalMap, frame, *map_);
   int inliers = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {

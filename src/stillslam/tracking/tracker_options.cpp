@@ -29,6 +29,7 @@ void TrackerOptions::check() const {
   new_point_check.check();
   at_least("TrackerOptions.outlier_streak_cull", outlier_streak_cull, 0);
   pose.check();
+  static_evidence.check();
 }
 
 }  // namespace stillslam

@@ -3,6 +3,7 @@
 #include "stillslam/tracking/depth_point_check.h"
 #include "stillslam/tracking/initial_view_check.h"
 #include "stillslam/tracking/keyframe_budget.h"
+#include "stillslam/tracking/static_evidence.h"
 #include "stillslam/tracking/tracking_probe.h"
 
 namespace stillslam {
@@ -41,6 +42,9 @@ struct TrackerOptions {
   // culled static points too, see bench/README.md); Tracker::cull_outlier_streaks.
   int outlier_streak_cull = 0;
   PoseOptimizerOptions pose;
+  // Motion-model, reference-keyframe and local-map poses from the map points
+  // with static evidence (tracking/static_evidence.h).
+  StaticEvidenceOptions static_evidence;
   // Track against the map without changing it (a loaded map): no keyframes,
   // no map points; never initializes a map of its own.
   bool localization_only = false;

@@ -1,0 +1,76 @@
+#include "stillslam/tracking/static_evidence.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "stillslam/core/option_check.h"
+#include "stillslam/map/keyframe.h"
+#include "stillslam/optimize/reprojection_costs.h"
+#include "stillslam/tracking/pose_refinement.h"
+
+namespace stillslam {
+
+std::uint64_t observation_span_frames(const MapPoint& point) {
+  std::uint64_t first = std::numeric_limits<std::uint64_t>::max(), last = 0;
+  for (const auto& [kf, index] : point.observations()) {
+    first = std::min(first, kf->frame_id());
+    last = std::max(last, kf->frame_id());
+  }
+  return last > first ? last - first : 0;
+}
+
+bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& options) {
+  return !point.is_bad() && point.observations().size() >= 2 &&
+         observation_span_frames(point) >= static_cast<std::uint64_t>(options.min_span_frames);
+}
+
+int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options) {
+  if (!options.enabled) return refine_pose(frame, pose);
+  const CameraSetup& setup = frame.setup();
+  std::vector<PoseObservation> trusted, others;
+  std::vector<std::size_t> trusted_index, other_index;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const MapPointPtr& mp = frame.map_point(i);
+    if (!mp) continue;
+    PoseObservation obs;
+    obs.point_world = mp->position();
+    const cv::KeyPoint& kp = frame.keypoint(i);
+    obs.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
+    obs.u_right = frame.u_right(i);
+    obs.inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
+    if (has_static_evidence(*mp, options)) {
+      trusted.push_back(obs);
+      trusted_index.push_back(i);
+    } else {
+      others.push_back(obs);
+      other_index.push_back(i);
+    }
+  }
+  if (static_cast<int>(trusted.size()) < options.min_points) return refine_pose(frame, pose);
+  const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), trusted, pose);
+  // The old points disagree among themselves (the map moved, or they are
+  // mismatched): no consensus to lean on.
+  if (result.num_inliers < options.min_points) return refine_pose(frame, pose);
+  frame.set_pose(result.T_cam_world);
+  for (std::size_t k = 0; k < trusted_index.size(); ++k) frame.set_outlier(trusted_index[k], !result.inlier[k]);
+  const Intrinsics intrinsics(setup.camera);
+  int inliers = result.num_inliers;
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const PoseObservation& o = others[k];
+    const bool stereo = o.u_right >= 0 && intrinsics.bf > 0;
+    const ReprojectionCheck c = check_reprojection(intrinsics, result.T_cam_world, o.point_world, o.pixel,
+                                                   stereo ? o.u_right : -1.0, o.inv_sigma2);
+    const bool inlier = c.in_front() && c.chi2 <= (stereo ? pose.chi2_stereo : pose.chi2_mono);
+    frame.set_outlier(other_index[k], !inlier);
+    inliers += inlier;
+  }
+  return inliers;
+}
+
+void StaticEvidenceOptions::check() const {
+  using namespace option_check;
+  at_least("StaticEvidenceOptions.min_span_frames", min_span_frames, 0);
+  at_least("StaticEvidenceOptions.min_points", min_points, 3);
+}
+
+}  // namespace stillslam

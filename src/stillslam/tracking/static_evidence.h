@@ -1,0 +1,46 @@
+#pragma once
+// Pose from the map points with static evidence (issue #20). A close,
+// textured thing that moves (a person no mask covers) fixes the translation
+// along the view much better than a static scene a few metres away, so a
+// least-squares pose over all matches follows it, and the motion model then
+// carries its velocity on. Here the pose is estimated from the matches whose
+// map point has been observed consistently over a span of frames (the
+// keyframes observing it lie at least min_span_frames apart); new points,
+// the motion model's temporary last-frame points and points only one moment
+// of the map has seen are classified against that pose (chi2, as the
+// optimizer's rounds) but do not move it. The velocity of the next motion
+// prediction is then that of the consensus on old points too.
+#include "stillslam/map/frame.h"
+#include "stillslam/map/map_point.h"
+#include "stillslam/optimize/pose_optimizer.h"
+
+namespace stillslam {
+
+struct StaticEvidenceOptions {
+  // Tracking.staticEvidencePose: 0 off (all matches move the pose, ORB-SLAM's
+  // rule). On by default: on the issue #20 renders it took --no-segmentation
+  // from 0.12-0.78 m to 6-370 mm, at 0.85-1.07x on the static twins and
+  // 0.93-1.05x with masks (bench/README.md).
+  bool enabled = true;
+  // Tracking.staticEvidenceSpan: a map point has static evidence when the
+  // keyframes observing it span at least this many frames.
+  int min_span_frames = 10;
+  // Tracking.staticEvidenceMinPoints: fewer matches (or inliers) with
+  // evidence than this: the pose from all matches, as without the rule.
+  int min_points = 40;
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
+};
+
+// Frames between the first and the last keyframe observing the point (0 for
+// points without observations, e.g. temporary ones).
+std::uint64_t observation_span_frames(const MapPoint& point);
+
+bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& options);
+
+// refine_pose (tracking/pose_refinement.h) with the rule above: outlier
+// flags are set on all matches, the pose comes from those with evidence.
+// Returns the number of inlier observations.
+int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options);
+
+}  // namespace stillslam
