@@ -5,6 +5,7 @@
 #include <string>
 
 #include "io/temp_dir.h"
+#include "settings_test_files.h"
 #include "stillslam/core/error.h"
 #include "stillslam/settings/settings.h"
 
@@ -13,32 +14,7 @@ namespace {
 
 using test::TempDir;
 
-const std::string kBase = R"(%YAML:1.0
-Camera.fx: 535.4
-Camera.fy: 539.2
-Camera.cx: 320.1
-Camera.cy: 247.6
-Camera.k1: 0.0
-Camera.k2: 0.0
-Camera.p1: 0.0
-Camera.p2: 0.0
-Camera.width: 640
-Camera.height: 480
-Camera.fps: 30.0
-Camera.bf: 40.0
-ThDepth: 40.0
-DepthMapFactor: 5000.0
-Segmentation.enabled: 0
-)";
-
-std::string load_error(const TempDir& dir, const std::string& text) {
-  try {
-    load_settings(dir.write("bad.yaml", text));
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+const std::string& kBase = test::kRgbdSettings;
 
 TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
   TempDir dir;
@@ -63,14 +39,14 @@ TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
 
 TEST(MaskPropagationSettings, BadValuesNameTheKey) {
   TempDir dir;
-  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.mode: 3\n").find("MaskPropagation.mode' is 3: must be in [0, 2]"),
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.mode: 3\n").find("MaskPropagation.mode' is 3: must be in [0, 2]"),
             std::string::npos);
-  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.lkWindowPx: 20\n").find("MaskPropagation.lkWindowPx"),
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.lkWindowPx: 20\n").find("MaskPropagation.lkWindowPx"),
             std::string::npos);
-  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.marginPx: 9\nMaskPropagation.maxMarginPx: 5\n")
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.marginPx: 9\nMaskPropagation.maxMarginPx: 5\n")
                 .find("MaskPropagation.maxMarginPx"),
             std::string::npos);
-  EXPECT_NE(load_error(dir, kBase + "MaskPropagation.lkWindow: 21\n").find("known keys"), std::string::npos);
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.lkWindow: 21\n").find("known keys"), std::string::npos);
 }
 
 }  // namespace

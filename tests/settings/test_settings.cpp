@@ -3,6 +3,7 @@
 #include <string>
 
 #include "io/temp_dir.h"
+#include "settings_test_files.h"
 #include "stillslam/core/error.h"
 #include "stillslam/settings/settings.h"
 
@@ -170,17 +171,6 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   EXPECT_NE(pos, std::string::npos) << from;
   if (pos != std::string::npos) text.replace(pos, from.size(), to);
   return text;
-}
-
-// Loads `text` and returns the Error message ("" when it loaded).
-std::string load_error(const TempDir& dir, const std::string& text) {
-  const auto file = dir.write("bad.yaml", text);
-  try {
-    load_settings(file);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(Settings, OldStyleTumLoadsUnchanged) {
@@ -352,7 +342,7 @@ TEST(Settings, ErrorsNameFileAndKey) {
       {replaced(kNewFisheye, "rows: 4\n  cols: 4", "rows: 2\n  cols: 8"), "Stereo.T_c1_c2", "4x4"},
   };
   for (const Case& c : cases) {
-    const std::string message = load_error(dir, c.text);
+    const std::string message = test::settings_error(dir, c.text);
     SCOPED_TRACE(c.key);
     EXPECT_NE(message.find("bad.yaml"), std::string::npos) << message;
     EXPECT_NE(message.find("'" + c.key + "'"), std::string::npos) << message;
@@ -384,7 +374,7 @@ TEST(Settings, MissingOrMalformedFile) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("nope.yaml: settings file not found"), std::string::npos) << e.what();
   }
-  const std::string message = load_error(dir, "%YAML:1.0\nCamera.fx: [1, 2\nCamera.fy: 3\n");
+  const std::string message = test::settings_error(dir, "%YAML:1.0\nCamera.fx: [1, 2\nCamera.fy: 3\n");
   EXPECT_NE(message.find("bad.yaml"), std::string::npos) << message;
   EXPECT_NE(message.find("YAML"), std::string::npos) << message;
 }

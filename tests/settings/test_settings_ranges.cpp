@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/temp_dir.h"
+#include "settings_test_files.h"
 #include "stillslam/core/error.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/sim/settings_files.h"
@@ -21,39 +22,13 @@ namespace fs = std::filesystem;
 
 // A valid RGB-D file; each case appends one key (a later key wins in OpenCV's
 // YAML, so camera keys are replaced instead).
-const std::string kBase = R"(%YAML:1.0
-Camera.fx: 535.4
-Camera.fy: 539.2
-Camera.cx: 320.1
-Camera.cy: 247.6
-Camera.k1: 0.0
-Camera.k2: 0.0
-Camera.p1: 0.0
-Camera.p2: 0.0
-Camera.width: 640
-Camera.height: 480
-Camera.fps: 30.0
-Camera.bf: 40.0
-ThDepth: 40.0
-DepthMapFactor: 5000.0
-Segmentation.enabled: 0
-)";
+const std::string& kBase = test::kRgbdSettings;
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const auto pos = text.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
   if (pos != std::string::npos) text.replace(pos, from.size(), to);
   return text;
-}
-
-std::string load_error(const TempDir& dir, const std::string& text) {
-  const auto file = dir.write("bad.yaml", text);
-  try {
-    load_settings(file);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 struct Case {
@@ -190,7 +165,7 @@ TEST(SettingsRanges, EverySectionKeyOutOfRangeNamesKeyValueAndRange) {
   TempDir dir;
   for (const Case& c : kSectionCases) {
     SCOPED_TRACE(c.key + ": " + c.value);
-    const std::string message = load_error(dir, kBase + c.key + ": " + c.value + "\n");
+    const std::string message = test::settings_error(dir, kBase + c.key + ": " + c.value + "\n");
     EXPECT_NE(message.find("bad.yaml: key '" + c.key + "' " + c.hint), std::string::npos) << message;
   }
 }
@@ -227,7 +202,7 @@ TEST(SettingsRanges, CameraKeysOutOfRangeNameKeyValueAndRange) {
   TempDir dir;
   for (const CameraCase& c : kCameraCases) {
     SCOPED_TRACE(c.to);
-    const std::string message = load_error(dir, replaced(kBase, c.from, c.to));
+    const std::string message = test::settings_error(dir, replaced(kBase, c.from, c.to));
     EXPECT_NE(message.find("bad.yaml: key '" + c.key + "' " + c.hint), std::string::npos) << message;
   }
 }
@@ -238,7 +213,7 @@ TEST(SettingsRanges, FoldingDistortionNamesTheCoefficient) {
   const std::string euroc = replaced(kBase, "Camera.k1: 0.0\nCamera.k2: 0.0\nCamera.p1: 0.0\nCamera.p2: 0.0",
                                      "Camera.k1: -0.28340811\nCamera.k2: 0.07395907\nCamera.p1: 0.00019359\n"
                                      "Camera.p2: -1");
-  const std::string m = load_error(dir, euroc);
+  const std::string m = test::settings_error(dir, euroc);
   EXPECT_NE(m.find("key 'Camera.p2' is -1: this distortion folds the image"), std::string::npos) << m;
   // EuRoC's real coefficients load.
   const std::string real = replaced(euroc, "Camera.p2: -1", "Camera.p2: 1.76187114e-05");
@@ -246,7 +221,7 @@ TEST(SettingsRanges, FoldingDistortionNamesTheCoefficient) {
   // Fisheye (KannalaBrandt8) whose angle turns back inside the view.
   const std::string kb8 = replaced(kBase, "%YAML:1.0\n", "%YAML:1.0\nCamera.type: \"KannalaBrandt8\"\n");
   const std::string fisheye = replaced(kb8, "Camera.p1: 0.0\nCamera.p2: 0.0", "Camera.k3: 0.0\nCamera.k4: -2.0");
-  const std::string f = load_error(dir, fisheye);
+  const std::string f = test::settings_error(dir, fisheye);
   EXPECT_NE(f.find("key 'Camera.k4' is -2: this distortion folds the image at "), std::string::npos) << f;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "io/temp_dir.h"
+#include "settings_test_files.h"
 #include "stillslam/core/error.h"
 #include "stillslam/settings/settings.h"
 
@@ -69,19 +70,11 @@ Viewer.ViewpointZ: -1.8
 Viewer.ViewpointF: 500
 )";
 
+// Where a built binary would be: the shipped model is found from it.
+const fs::path kExecutable = STILLSLAM_SOURCE_DIR "/build/stillslam";
+
 fs::path shipped_model() {
   return (fs::absolute(STILLSLAM_SOURCE_DIR) / "models/yolo11n-seg_384x512.onnx").lexically_normal();
-}
-
-std::string load_error(const TempDir& dir, const std::string& text,
-                       const fs::path& executable = STILLSLAM_SOURCE_DIR "/build/stillslam") {
-  const auto file = dir.write("bad.yaml", text);
-  try {
-    load_settings(file, executable);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(SettingsDefaults, UnchangedOrbSlam3Tum3RunsWithTheShippedModel) {
@@ -149,14 +142,14 @@ TEST(SettingsDefaults, SectionsLeftOutKeepTodaysOptions) {
 
 TEST(SettingsDefaults, NoShippedModelIsAnErrorNamingPathAndFix) {
   TempDir dir;
-  const std::string message = load_error(dir, kOrbSlamTum3, "/nonexistent/bin/stillslam");
+  const std::string message = test::settings_error(dir, kOrbSlamTum3, "/nonexistent/bin/stillslam");
   EXPECT_NE(message.find("bad.yaml: key 'Segmentation.model' is not given"), std::string::npos) << message;
   EXPECT_NE(message.find("models/yolo11n-seg_384x512.onnx"), std::string::npos) << message;
   EXPECT_NE(message.find("/nonexistent/bin"), std::string::npos) << message;
   EXPECT_NE(message.find("set Segmentation.model"), std::string::npos) << message;
   EXPECT_NE(message.find("Segmentation.enabled: 0"), std::string::npos) << message;
   // Segmentation off: no model needed.
-  EXPECT_EQ(load_error(dir, std::string(kOrbSlamTum3) + "Segmentation.enabled: 0\n", "/nonexistent/bin/stillslam"),
+  EXPECT_EQ(test::settings_error(dir, std::string(kOrbSlamTum3) + "Segmentation.enabled: 0\n", "/nonexistent/bin/stillslam"),
             "");
   // A model given in the file wins over the shipped one.
   const Settings s = load_settings(dir.write("m.yaml", std::string(kOrbSlamTum3) + "Segmentation.model: m.onnx\n"));
@@ -303,12 +296,12 @@ TEST(SettingsSections, MisspeltKeysListTheKnownOnes) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.key);
-    const std::string message = load_error(dir, c.text);
+    const std::string message = test::settings_error(dir, c.text, kExecutable);
     EXPECT_NE(message.find("bad.yaml: key '" + c.key + "'"), std::string::npos) << message;
     EXPECT_NE(message.find(c.known), std::string::npos) << message;
   }
   // Viewer.* is ORB-SLAM3's too: another key there only warns.
-  EXPECT_EQ(load_error(dir, base + "Viewer.prot: 9000\n"), "");
+  EXPECT_EQ(test::settings_error(dir, base + "Viewer.prot: 9000\n", kExecutable), "");
 }
 
 TEST(SettingsSections, BadValuesNameFileKeyValueAndRange) {
@@ -338,7 +331,7 @@ TEST(SettingsSections, BadValuesNameFileKeyValueAndRange) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.key);
-    const std::string message = load_error(dir, c.text);
+    const std::string message = test::settings_error(dir, c.text, kExecutable);
     EXPECT_NE(message.find("bad.yaml: key '" + c.key + "' "), std::string::npos) << message;
     EXPECT_NE(message.find(c.hint), std::string::npos) << message;
   }

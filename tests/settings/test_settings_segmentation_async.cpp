@@ -4,6 +4,7 @@
 #include <string>
 
 #include "io/temp_dir.h"
+#include "settings_test_files.h"
 #include "stillslam/core/error.h"
 #include "stillslam/settings/settings.h"
 
@@ -30,15 +31,6 @@ ThDepth: 40.0
 DepthMapFactor: 5000.0
 Segmentation.model: "/abs/model.onnx"
 )";
-
-std::string load_error(TempDir& dir, const std::string& text) {
-  try {
-    load_settings(dir.write("bad.yaml", text));
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   TempDir dir;
@@ -71,7 +63,7 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
        "must be at most max_mask_age"},
   };
   for (const Case& c : cases) {
-    const std::string message = load_error(dir, c.text);
+    const std::string message = test::settings_error(dir, c.text);
     SCOPED_TRACE(c.key);
     EXPECT_NE(message.find("'" + c.key + "'"), std::string::npos) << message;
     EXPECT_NE(message.find(c.hint), std::string::npos) << message;
