@@ -13,24 +13,7 @@ namespace {
 
 using test::TempDir;
 
-const std::string kTum = R"(%YAML:1.0
-Camera.fx: 517.3
-Camera.fy: 516.5
-Camera.cx: 318.6
-Camera.cy: 255.3
-Camera.k1: 0.0
-Camera.k2: 0.0
-Camera.p1: 0.0
-Camera.p2: 0.0
-Camera.width: 640
-Camera.height: 480
-Camera.fps: 30.0
-Camera.bf: 40.0
-Camera.RGB: 1
-ThDepth: 40.0
-DepthMapFactor: 5000.0
-Segmentation.model: "/abs/model.onnx"
-)";
+const std::string& kTum = test::kRgbdSettings;  // segmentation off: the keys are read all the same
 
 TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   TempDir dir;
