@@ -11,8 +11,6 @@
 // give: the same frames turned to gray and back to three equal channels.
 // Without --model: models/*.onnx and ../shared/models/yolo-seg/yolo11n-seg_*.onnx.
 // --propagate A: accuracy of propagated masks by age 0..A (mask_propagation_accuracy.h).
-#include <time.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -23,6 +21,7 @@
 #include <vector>
 
 #include "stillslam/core/error.h"
+#include "stillslam/system/process_cpu_time.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/dynamic_mask.h"
@@ -33,12 +32,6 @@ namespace fs = std::filesystem;
 using namespace stillslam;
 
 namespace {
-
-double process_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 // rgb/<name>.png of associations.txt, every `step`-th frame.
 std::vector<std::string> sampled_frames(const fs::path& seq, int step) {
@@ -141,9 +134,9 @@ int main(int argc, char** argv) {
           cv::cvtColor(bgr, bgr, cv::COLOR_BGR2GRAY);
           cv::cvtColor(bgr, bgr, cv::COLOR_GRAY2BGR);
         }
-        const double t0 = process_cpu_ms();
+        const double t0 = process_cpu_seconds();
         const cv::Mat1b pred = dynamic_mask(segmenter.segment(bgr), person, bgr.size(), 0);
-        cpu += process_cpu_ms() - t0;
+        cpu += (process_cpu_seconds() - t0) * 1e3;
         const cv::Mat1b g = gt > 0;
         const double i = cv::countNonZero(pred & g), t = cv::countNonZero(g), p = cv::countNonZero(pred);
         inter += i;

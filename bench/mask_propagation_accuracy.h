@@ -16,8 +16,6 @@
 // --depth sparse keeps depth only at FAST corners (what stereo keypoints give).
 // --frame-stride S uses every S-th frame only (S times faster motion per frame;
 // ages count those frames).
-#include <time.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
@@ -31,6 +29,7 @@
 #include <vector>
 
 #include "stillslam/core/error.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/io/tum_dataset.h"
 #include "stillslam/segmentation/coco_classes.h"
@@ -50,12 +49,6 @@ struct PropagationBenchOptions {
   std::string depth = "dense"; // dense, sparse, none
   MaskPropagationOptions propagation;
 };
-
-inline double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 // Connected components of a binary mask, one frame-size mask each (components
 // under 50 pixels dropped: single stray pixels are no person).
@@ -169,10 +162,10 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
       MaskPropagationOptions o = b.propagation;
       o.mode = variants[v].mode;
       MaskPropagator propagator(camera, o);
-      const double t_reset = thread_cpu_ms();
+      const ThreadCpuStopwatch reset_cpu;
       propagator.reset({.frame_id = k, .gray = f0.gray, .depth = f0.depth, .instances = fresh,
                         .T_cam_world = T_cam_world_of(gt[k])});
-      reset_ms[v] += thread_cpu_ms() - t_reset;
+      reset_ms[v] += reset_cpu.elapsed_ms();
       counts[v][0].add(dynamic_mask(fresh, f0.gray.size(), propagator.margin_px(0)), f0.truth);
       for (int a = 1; a <= b.max_age; ++a) {
         const std::size_t j = k + static_cast<std::size_t>(a) * S;
@@ -182,9 +175,9 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
           const Eigen::Isometry3d T1 = T_cam_world_of(gt[j - S]), T2 = T_cam_world_of(gt[j - 2 * S]);
           predicted = (T1 * T2.inverse()) * T1;
         }
-        const double t0 = thread_cpu_ms();
+        const ThreadCpuStopwatch propagate_cpu;
         const PropagatedMasks p = propagator.propagate(k + static_cast<std::size_t>(a), f.gray, f.depth, predicted);  // virtual frame ids: age a
-        cpu_ms[v] += thread_cpu_ms() - t0;
+        cpu_ms[v] += propagate_cpu.elapsed_ms();
         ++calls[v];
         if (variants[v].poses) propagator.set_last_pose(T_cam_world_of(gt[j]));
         for (const PropagatedInstance& i : p.instances) ++motions[v][i.motion];
