@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -23,6 +22,7 @@
 #include "../tests/features/euroc_stereo.h"    // same data loading as the tests
 #include "../tests/features/textured_image.h"  // same procedural texture as the tests
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/features/descriptor.h"
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/features/stereo_matcher.h"
@@ -43,14 +43,6 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-// CPU time of the calling thread: with cv::setNumThreads(1) this is the work
-// itself, unaffected by other processes competing for the cores.
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
 struct Timing {
   double median_ms = 0;      // wall clock
   double median_cpu_ms = 0;  // calling thread's CPU time
@@ -63,11 +55,11 @@ Timing time_extraction(const std::vector<cv::Mat>& images, int repeats, Extract&
   double features = 0;
   for (int r = 0; r < repeats; ++r) {
     for (const cv::Mat& image : images) {
-      const double cpu0 = thread_cpu_ms();
+      const ThreadCpuStopwatch cpu_watch;
       Stopwatch sw;
       const std::size_t n = extract(image);
       ms.push_back(sw.elapsed_ms());
-      cpu.push_back(thread_cpu_ms() - cpu0);
+      cpu.push_back(cpu_watch.elapsed_ms());
       features += static_cast<double>(n);
     }
   }
@@ -112,9 +104,9 @@ void bench_stereo(const test::EurocStereo& data, bool flow) {
     std::vector<cv::Mat> pl, pr;
     const OrbFeatures fl = extractor.extract(data.left[i], &pl);
     const OrbFeatures fr = extractor.extract(data.right[i], &pr);
-    const double cpu0 = thread_cpu_ms();
+    const ThreadCpuStopwatch cpu_watch;
     const StereoMatches m = match_stereo(fl, pl, fr, pr, extractor.pyramid(), data.fx, data.bf, matching);
-    ms.push_back(thread_cpu_ms() - cpu0);
+    ms.push_back(cpu_watch.elapsed_ms());
     matches.push_back(m.num_matches);
     for (float d : m.depth) {
       if (d > 0) depths.push_back(d);
@@ -137,20 +129,20 @@ void bench_descriptor_distance() {
   rng.fill(a, cv::RNG::UNIFORM, 0, 256);
   rng.fill(b, cv::RNG::UNIFORM, 0, 256);
   long sum = 0;
-  double cpu0 = thread_cpu_ms();
+  ThreadCpuStopwatch cpu_watch;
   for (int i = 0; i < a.rows; ++i) {
     const std::uint8_t* pa = a.ptr<std::uint8_t>(i);
     for (int j = 0; j < b.rows; ++j) sum += descriptor_distance(pa, b.ptr<std::uint8_t>(j));
   }
-  const double ours_ns = (thread_cpu_ms() - cpu0) * 1e6 / (a.rows * b.rows);
+  const double ours_ns = cpu_watch.elapsed_ms() * 1e6 / (a.rows * b.rows);
   long sum_cv = 0;
-  cpu0 = thread_cpu_ms();
+  cpu_watch = ThreadCpuStopwatch();
   for (int i = 0; i < a.rows; ++i) {
     for (int j = 0; j < b.rows; ++j) {
       sum_cv += static_cast<long>(cv::norm(a.row(i), b.row(j), cv::NORM_HAMMING));
     }
   }
-  const double cv_ns = (thread_cpu_ms() - cpu0) * 1e6 / (a.rows * b.rows);
+  const double cv_ns = cpu_watch.elapsed_ms() * 1e6 / (a.rows * b.rows);
   std::printf("descriptor_distance: %.1f ns cpu per pair (cv::norm NORM_HAMMING %.1f ns), checksums %s\n", ours_ns, cv_ns,
               sum == sum_cv ? "equal" : "DIFFER");
 }

@@ -11,13 +11,13 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include "../tests/loop/loop_scene.h"  // same scene as the tests
 #include "../tests/loop/real_place_data.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/loop/loop_closer.h"
 #include "stillslam/loop/loop_detector.h"
 #include "stillslam/loop/place_recognizer.h"
@@ -26,12 +26,6 @@
 using namespace stillslam;
 
 namespace {
-
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
 
 struct Timing {
   std::vector<double> wall, cpu;
@@ -54,9 +48,9 @@ void row(const char* name, const Timing& t, const char* note = "") {
 template <typename F>
 void timed(Timing& t, F&& f) {
   Stopwatch w;
-  const double c0 = thread_cpu_ms();
+  const ThreadCpuStopwatch cpu_watch;
   f();
-  t.add(w.elapsed_ms(), thread_cpu_ms() - c0);
+  t.add(w.elapsed_ms(), cpu_watch.elapsed_ms());
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -19,6 +18,7 @@
 #include <vector>
 
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/features/descriptor_matcher.h"
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/place/direct_index_matcher.h"
@@ -32,12 +32,6 @@ namespace {
 
 const fs::path kSource = fs::path(STILLSLAM_SOURCE_DIR);
 const fs::path kShared = kSource.parent_path() / "shared";
-
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -54,9 +48,9 @@ Timed time_median(int repeats, F&& f) {
   std::vector<double> wall, cpu;
   for (int r = 0; r < repeats; ++r) {
     Stopwatch w;
-    const double c0 = thread_cpu_ms();
+    const ThreadCpuStopwatch cpu_watch;
     f();
-    cpu.push_back(thread_cpu_ms() - c0);
+    cpu.push_back(cpu_watch.elapsed_ms());
     wall.push_back(w.elapsed_ms());
   }
   return {percentile(wall, 0.5), percentile(cpu, 0.5)};
@@ -161,10 +155,10 @@ int main(int argc, char** argv) {
               percentile(query_cpu, 0.9));
   std::vector<double> brute;
   for (std::size_t q = 0; q < 10; ++q) {
-    const double c0 = thread_cpu_ms();
+    const ThreadCpuStopwatch cpu_watch;
     double best = 0;
     for (const auto& b : bows) best = std::max(best, l1_score(bows[q], b));
-    brute.push_back(thread_cpu_ms() - c0 + best * 0);
+    brute.push_back(cpu_watch.elapsed_ms() + best * 0);
   }
   std::printf("  (scoring all 1000 with l1_score instead: %.3f ms cpu)\n", percentile(brute, 0.5));
 

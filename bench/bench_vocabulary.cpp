@@ -24,7 +24,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -32,6 +31,7 @@
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/loop/place_recognizer.h"
 #include "stillslam/map/map.h"
 #include "stillslam/place/keyframe_database.h"
@@ -49,12 +49,6 @@ namespace {
 
 constexpr int kDirectIndexLevel = 2;
 
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
 struct Timing {
   std::vector<double> wall, cpu;
 };
@@ -62,9 +56,9 @@ struct Timing {
 template <typename F>
 void timed(Timing& t, F&& f) {
   Stopwatch w;
-  const double c0 = thread_cpu_ms();
+  const ThreadCpuStopwatch cpu_watch;
   f();
-  t.cpu.push_back(thread_cpu_ms() - c0);
+  t.cpu.push_back(cpu_watch.elapsed_ms());
   t.wall.push_back(w.elapsed_ms());
 }
 
