@@ -27,6 +27,10 @@
 // --mask-miss-rate: that share of the frames gets no mask (a detector that
 // lost the people), chosen with --mask-miss-seed; with --mask-miss-burst S in
 // whole bursts of S seconds. bench_mask_misses sweeps the rate.
+// --oracle-instances: the folder's instances/ instead, one detection per
+// instance with its class (the motion stage's input, issue #19); with
+// Motion.enabled the run also prints how the still person and the moved
+// objects were treated (oracle_motion_tally.h).
 #include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -51,6 +55,8 @@
 #include "stillslam/system/dataset_runner.h"
 #include "stillslam/system/realtime_summary.h"
 #include "stillslam/system/run_summary.h"
+#include "oracle_instance_segmenter.h"
+#include "oracle_motion_tally.h"
 #include "oracle_segmenter.h"
 
 namespace fs = std::filesystem;
@@ -60,6 +66,7 @@ namespace {
 
 struct Args {
   std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory, keyframe_trajectory;
+  std::string oracle_instances;
   bool no_segmentation = false, deterministic = false, check_determinism = false, raw_trajectory = false;
   std::size_t max_frames = 0;
   int opencv_threads = -1;
@@ -81,6 +88,8 @@ Args parse(int argc, char** argv) {
   app.add_option("--trajectory", a.trajectory, "write the estimated trajectory here (TUM format)");
   app.add_option("--keyframe-trajectory", a.keyframe_trajectory, "write the keyframes' poses here (TUM format)");
   app.add_option("--oracle-masks", a.oracle_masks, "simulate folder whose ground-truth masks/ replace YOLO");
+  app.add_option("--oracle-instances", a.oracle_instances,
+                 "simulate folder whose ground-truth instances/ (one detection each, with its class) replace YOLO");
   app.add_option("--mask-miss-rate", a.misses.rate, "with --oracle-masks: share of frames without a mask")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--mask-miss-burst", a.misses.burst_seconds, "missed masks in bursts of this many seconds (0: frames)")
@@ -122,6 +131,10 @@ RunResult run_once(const Settings& settings, const Dataset& dataset, const Args&
     std::vector<bool> missed = oracle::choose_missed_frames(oracle::oracle_mask_files(a.oracle_masks).size(), misses);
     options.system.segmenter_factory = [dir = a.oracle_masks, missed, cost = a.segmenter_cost_ms] {
       return std::make_unique<oracle::OracleSegmenter>(dir, missed, cost);
+    };
+  } else if (!a.oracle_instances.empty()) {
+    options.system.segmenter_factory = [dir = a.oracle_instances] {
+      return std::make_unique<oracle::OracleInstanceSegmenter>(dir);
     };
   } else if (a.misses.rate > 0) {
     throw Error("--mask-miss-rate needs --oracle-masks DIR (the exact masks to miss)");
@@ -294,6 +307,17 @@ int bench(const Args& a) {
   out["realtime"] = to_json(rt);
   std::printf("  wall %.1f s\n", r.wall_seconds);
   out["extraction_cpu_share"] = cpu_share;
+  if (!a.oracle_instances.empty() && settings.motion.enabled) {
+    const oracle::MotionTally t =
+        oracle::tally_motion(a.oracle_instances, r.frames, settings.motion.span + settings.motion.person_frames);
+    std::printf("  motion: still person kept static in %d / %d frames past its window (%.1f %%); moved objects "
+                "masked in %d / %d of their moving frames (%.1f %%); %d frames without a pose\n",
+                t.still_kept, t.still_frames, t.still_frames ? 100.0 * t.still_kept / t.still_frames : 0.0,
+                t.moved_removed, t.moved_frames, t.moved_frames ? 100.0 * t.moved_removed / t.moved_frames : 0.0,
+                t.frames_without_pose);
+    out["motion"] = {{"still_frames", t.still_frames}, {"still_kept", t.still_kept},
+                     {"moved_frames", t.moved_frames}, {"moved_removed", t.moved_removed}};
+  }
 
   fs::path gt = a.groundtruth;
   if (gt.empty() && fs::exists(fs::path(a.input) / "groundtruth.txt")) gt = fs::path(a.input) / "groundtruth.txt";

@@ -21,5 +21,6 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options);  /
 void bind_loop_closing(const YamlReader& yaml, Settings& settings);             // LoopClosing.*
 void bind_viewer(const YamlReader& yaml, ViewerOptions& options);              // Viewer.port, Viewer.host
 void bind_mask_propagation(const YamlReader& yaml, MaskPropagationOptions& options);  // MaskPropagation.*
+void bind_motion(const YamlReader& yaml, MotionOptions& options);  // Motion.*
 
 }  // namespace stillslam

@@ -20,6 +20,7 @@ Settings load_settings(const std::filesystem::path& yaml_file, const std::filesy
   bind_loop_closing(yaml, s);
   bind_viewer(yaml, s.viewer);
   bind_mask_propagation(yaml, s.mask_propagation);
+  bind_motion(yaml, s.motion);
   return s;
 }
 

@@ -16,6 +16,7 @@
 #include "stillslam/segmentation/mask_propagation.h"
 #include "stillslam/segmentation/segmentation_options.h"
 #include "stillslam/settings/viewer_options.h"
+#include "stillslam/tracking/motion_options.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker_options.h"
 
@@ -37,6 +38,7 @@ struct Settings : CameraSettings {
   MapMergerOptions map_merger;               // LoopClosing.merge*
   ViewerOptions viewer;                      // Viewer.port, Viewer.host
   MaskPropagationOptions mask_propagation;   // MaskPropagation.*
+  MotionOptions motion;                      // Motion.*
 };
 
 // The most threads a thread-count key (Segmentation.threads, *.baThreads)

@@ -128,6 +128,12 @@ void System::build_pipeline(const Settings& settings) {
   } else {
     builder_ = std::make_unique<FrameBuilder>(setup_, sensor_, settings.orb, segmentation_.get(), stereo_matching);
   }
+  // 2b. Motion-aware masks (issue #19): instances judged by their motion after tracking.
+  if (settings.motion.enabled && builder_->segmentation_enabled()) {
+    motion_stage_ = std::make_unique<MotionStage>(setup_->camera, settings.orb, dynamic_class_ids_,
+                                                  settings.segmentation.mask_dilation, settings.motion);
+    builder_->set_motion_stage(motion_stage_.get());
+  }
 
   Map& map = atlas_->active_map();
   // 5. Loop closing (own thread, with a vocabulary): keyframes from local
@@ -343,6 +349,10 @@ FrameStats System::process(const SensorFrame& input) {
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
   stats.keyframe_deferred = result.keyframe_deferred;
+  if (motion_stage_) {
+    std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+    stats.build.motion.map_points_culled = motion_stage_->on_tracked(frame, result.state == TrackingState::Ok);
+  }
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();

@@ -48,6 +48,7 @@
 #include "stillslam/system/frame_stats.h"
 #include "stillslam/system/trajectory_refinement.h"
 #include "stillslam/tracking/frame_builder.h"
+#include "stillslam/tracking/motion_stage.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker.h"
 
@@ -200,6 +201,7 @@ class System {
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;
+  std::unique_ptr<MotionStage> motion_stage_;  // Motion.enabled with segmentation on
   std::unique_ptr<Atlas> atlas_;
   std::shared_ptr<const Vocabulary> vocabulary_;
   std::unique_ptr<PlaceRecognizer> recognizer_;

@@ -7,6 +7,7 @@
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
+#include "stillslam/tracking/motion_stage.h"
 
 namespace stillslam {
 
@@ -79,7 +80,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     st.detections = static_cast<int>(seg.detections.size());
     st.mask_coverage = seg.coverage;
     st.held_coverage = seg.held_coverage;
-    exclude = std::move(seg.dynamic_mask);
+    exclude = motion_ ? motion_->mask_for(seg.detections, seg.held_mask, color.size()) : std::move(seg.dynamic_mask);
     st.mask_age = 0;
     st.mask_waited = true;
     if (dynamics) dynamics->detections = std::move(seg.detections);
@@ -96,13 +97,15 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     st.mask_waited = m.waited;
     st.segmentation_request = m.scheduled;
     st.segmentation_skips = async_->skipped();
-    exclude = m.mask;
+    exclude = motion_ && m.age == 0 ? motion_->mask_for(m.source->detections, m.source->held_mask, color.size())
+                                    : m.mask;
     if (dynamics) dynamics->detections = m.source->detections;
   }
   Stopwatch extraction;
   ThreadCpuStopwatch extraction_cpu;
-  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr,
-                                       dynamics ? &dynamics->removed_keypoints : nullptr);
+  std::vector<cv::Point2f> removed_here;
+  std::vector<cv::Point2f>* removed = dynamics ? &dynamics->removed_keypoints : motion_ ? &removed_here : nullptr;
+  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr, removed);
   st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
   OrbFeatures right;
   if (stereo) right = right_future.get();
@@ -126,6 +129,10 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     left = select(left, keep);
   }
   st.keypoints_after = static_cast<int>(left.size());
+  if (motion_) {
+    motion_->collect(input.gray, sensor_ == SensorType::Rgbd ? input.depth : cv::Mat(), exclude, left.keypoints,
+                     *removed, st.motion);
+  }
 
   // 4. Undistortion and depth association.
   Stopwatch association;

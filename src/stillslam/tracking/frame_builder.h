@@ -18,10 +18,13 @@
 #include "stillslam/core/sensor_frame.h"
 #include "stillslam/map/frame.h"
 #include "stillslam/tracking/frame_dynamics.h"
+#include "stillslam/tracking/motion_frame_stats.h"
 #include "stillslam/segmentation/async_masks.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 
 namespace stillslam {
+
+class MotionStage;
 
 struct FrameBuildStats {
   int keypoints_before = 0;  // extracted on the left/colour image (outside the dynamic mask)
@@ -43,6 +46,7 @@ struct FrameBuildStats {
   bool mask_waited = false;  // extraction waited for the mask (sync: always; async: too old)
   ScheduleReason segmentation_request = ScheduleReason::None;  // async: this frame went to the stage, why
   std::size_t segmentation_skips = 0;  // async: stale requests the stage skipped so far
+  MotionFrameStats motion;  // Motion.enabled: the motion stage on this frame
 };
 
 class FrameBuilder {
@@ -65,6 +69,8 @@ class FrameBuilder {
               FrameDynamics* dynamics = nullptr) const;
 
   bool segmentation_enabled() const { return segmentation_ != nullptr || async_ != nullptr; }
+  // Motion-aware masks (not owned; null: class-only masks).
+  void set_motion_stage(MotionStage* stage) { motion_ = stage; }
 
  private:
   std::shared_ptr<const CameraSetup> setup_;
@@ -73,6 +79,7 @@ class FrameBuilder {
   SegmentationWorker* segmentation_;
   AsyncMasks* async_ = nullptr;
   StereoMatchOptions stereo_options_;
+  MotionStage* motion_ = nullptr;
 };
 
 }  // namespace stillslam

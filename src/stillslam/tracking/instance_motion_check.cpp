@@ -43,8 +43,10 @@ MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
   match.ratio = options_.ratio;
   for (const cv::DMatch& m : match_descriptors(cur.descriptors, prev.descriptors, match)) {
     const std::size_t c = static_cast<std::size_t>(m.queryIdx), p = static_cast<std::size_t>(m.trainIdx);
-    // Across an instance border, or between an instance and the background: not comparable.
-    if (cur.instance[c] != prev.instance[p]) continue;
+    // Across an instance border, or from an instance to the background: not
+    // comparable. From the background to an instance is: an object nobody
+    // segmented before (a box at rest) that is now an instance of its own.
+    if (cur.instance[c] != prev.instance[p] && prev.instance[p] != 0) continue;
     const double r = prev.depth[p] > 0
                          ? reprojection_residual(camera_, T_cur_prev, prev.pixels[p], prev.depth[p], cur.pixels[c])
                          : epipolar_residual(camera_, T_cur_prev, prev.pixels[p], cur.pixels[c]);

@@ -4,7 +4,8 @@
 // inside each instance (with the instance's stable id, segmentation/
 // instance_ids.h), with its tracked pose. The features are matched with
 // those of the frame `span` frames earlier (the background with the
-// background, an instance with the same instance), each match gets its
+// background, an instance with the same instance or with what was background
+// then), each match gets its
 // residual against the camera motion between the two poses
 // (motion_residual.h: with the earlier frame's depth, else epipolar), and
 // MotionEvidence judges each instance against the background of the same

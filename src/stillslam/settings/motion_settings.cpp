@@ -1,0 +1,18 @@
+#include "stillslam/settings/section_binders.h"
+#include "stillslam/settings/section_keys.h"
+
+namespace stillslam {
+
+void bind_motion(const YamlReader& yaml, MotionOptions& options) {
+  SectionKeys keys(yaml, "Motion", true);
+  keys.flag("enabled", options.enabled, "MotionOptions.enabled");
+  keys.integer("instanceFeatures", options.instance_features, "MotionOptions.instance_features", {1, 10000});
+  keys.integer("span", options.span, "MotionOptions.span", {1, 100});
+  keys.integer("personFrames", options.person_frames, "MotionOptions.person_frames", {1, 10000});
+  keys.integer("defaultFrames", options.default_frames, "MotionOptions.default_frames", {1, 10000});
+  keys.number("minIou", options.min_iou, "MotionOptions.min_iou", {0, 1, true});
+  keys.reject_unknown_keys();
+  keys.check([&] { options.check(); });
+}
+
+}  // namespace stillslam

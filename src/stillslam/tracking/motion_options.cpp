@@ -1,0 +1,24 @@
+#include "stillslam/tracking/motion_options.h"
+
+#include "stillslam/core/option_check.h"
+
+namespace stillslam {
+
+void MotionOptions::check() const {
+  using namespace option_check;
+  in_range("MotionOptions.instance_features", instance_features, 1, 10000);
+  in_range("MotionOptions.span", span, 1, 100);
+  in_range("MotionOptions.person_frames", person_frames, 1, 10000);
+  in_range("MotionOptions.default_frames", default_frames, 1, 10000);
+  in_half_open("MotionOptions.min_iou", min_iou, 0, 1);
+}
+
+InstanceMotionCheckOptions MotionOptions::check_options() const {
+  InstanceMotionCheckOptions o;
+  o.span = span;
+  o.evidence.default_frames = default_frames;
+  o.evidence.frames_by_class["person"] = person_frames;
+  return o;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,85 @@
+#pragma once
+// Motion-aware dynamic handling (issue #19): segmented instances keep stable
+// ids across segmentations (segmentation/instance_ids.h) and are judged by
+// their motion against the tracked camera motion (instance_motion_check.h).
+// An instance of a dynamic class (a person) that agrees with the camera
+// motion for its class's evidence window is left out of the mask, so its
+// features track and make map points; an instance of any other class that
+// moves is masked, and map points seen on it are culled. Masked instances
+// are still watched through a small set of features extracted inside the
+// mask and kept apart from tracking.
+//
+// Per frame, in order: mask_for() (frame builder, fresh segmentation),
+// collect() (frame builder, after extraction), on_tracked() (after tracking,
+// map lock held). Frames without a fresh segmentation skip the stage.
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "stillslam/features/orb_extractor.h"
+#include "stillslam/geometry/pinhole_camera.h"
+#include "stillslam/map/frame.h"
+#include "stillslam/segmentation/detection.h"
+#include "stillslam/segmentation/instance_ids.h"
+#include "stillslam/tracking/instance_motion_check.h"
+#include "stillslam/tracking/motion_frame_stats.h"
+#include "stillslam/tracking/motion_options.h"
+
+namespace stillslam {
+
+class MotionStage {
+ public:
+  // `orb`: the frame's extraction settings; the stage's own extractor keeps
+  // them with options.instance_features as its budget.
+  MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std::vector<int> dynamic_class_ids,
+              int dilation_px, MotionOptions options);
+
+  // A fresh segmentation of this frame: stable ids for its instances; returns
+  // the mask to extract outside of: the dynamic-class instances not judged
+  // static and the other instances judged moving (both dilated), and `held`
+  // (MaskHold's lost instances; may be empty).
+  cv::Mat1b mask_for(const std::vector<Detection>& detections, const cv::Mat1b& held, cv::Size size);
+
+  // After extraction outside `exclude`: the instances' features inside it for
+  // the check (`depth`: CV_32F metres or empty), and this frame's counts of
+  // features removed and kept (`kept`: the frame's keypoints, `removed`: the
+  // extractor's masked-out corners). No-op without a mask_for() this frame.
+  void collect(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat1b& exclude,
+               const std::vector<cv::KeyPoint>& kept, const std::vector<cv::Point2f>& removed,
+               MotionFrameStats& stats);
+
+  // After tracking (the caller holds the map's update mutex): the check on
+  // this frame with its tracked pose; map points on moving instances are
+  // culled. Lost tracking drops all evidence. Returns the map points culled.
+  int on_tracked(const Frame& frame, bool tracked);
+
+  bool is_static(std::uint32_t id) const { return check_.is_static(id); }
+  bool is_moving(std::uint32_t id) const { return moving_.count(id) > 0; }
+  void reset();
+
+ private:
+  // 0: background; else the instance id at the pixel (rounded, clamped).
+  std::uint32_t label_at(const cv::Point2f& p) const;
+  bool masked(std::uint32_t id) const;
+
+  PinholeCamera camera_;
+  OrbExtractor extractor_;
+  std::vector<int> dynamic_class_ids_;
+  int dilation_px_;
+  MotionOptions options_;
+  InstanceIds ids_;
+  InstanceMotionCheck check_;
+  std::set<std::uint32_t> moving_;  // instances of non-dynamic classes judged moving
+  // This frame (between mask_for() and on_tracked()).
+  bool pending_ = false;
+  cv::Mat1i labels_;
+  std::map<std::uint32_t, std::string> categories_;
+  std::set<std::uint32_t> dynamic_ids_;  // of a dynamic class
+  MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
+};
+
+}  // namespace stillslam

@@ -1,0 +1,46 @@
+// Motion.* keys: bound to MotionOptions, off by default, a bad value is an
+// error naming the key and its range.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/temp_dir.h"
+#include "settings_test_files.h"
+#include "stillslam/core/error.h"
+#include "stillslam/settings/settings.h"
+
+namespace stillslam {
+namespace {
+
+using test::TempDir;
+
+const std::string& kBase = test::kRgbdSettings;
+
+TEST(MotionSettings, KeysBindAndDefaultsStay) {
+  TempDir dir;
+  const Settings defaults = load_settings(dir.write("a.yaml", kBase));
+  EXPECT_FALSE(defaults.motion.enabled);
+  EXPECT_EQ(defaults.motion.span, MotionOptions{}.span);
+  const Settings s = load_settings(dir.write(
+      "b.yaml", kBase + "Motion.enabled: 1\nMotion.instanceFeatures: 120\nMotion.span: 8\nMotion.personFrames: 20\n"
+                        "Motion.defaultFrames: 5\nMotion.minIou: 0.4\n"));
+  EXPECT_TRUE(s.motion.enabled);
+  EXPECT_EQ(s.motion.instance_features, 120);
+  EXPECT_EQ(s.motion.span, 8);
+  EXPECT_EQ(s.motion.person_frames, 20);
+  EXPECT_EQ(s.motion.default_frames, 5);
+  EXPECT_DOUBLE_EQ(s.motion.min_iou, 0.4);
+  EXPECT_EQ(s.motion.check_options().evidence.frames_for("person"), 20);
+  EXPECT_EQ(s.motion.check_options().evidence.frames_for("chair"), 5);
+}
+
+TEST(MotionSettings, BadValuesNameTheKey) {
+  TempDir dir;
+  EXPECT_NE(test::settings_error(dir, kBase + "Motion.span: 0\n").find("Motion.span' is 0: must be in [1, 100]"),
+            std::string::npos);
+  EXPECT_NE(test::settings_error(dir, kBase + "Motion.minIou: 0\n").find("Motion.minIou"), std::string::npos);
+  EXPECT_NE(test::settings_error(dir, kBase + "Motion.spam: 3\n").find("known keys"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stillslam

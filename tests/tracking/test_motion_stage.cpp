@@ -1,0 +1,165 @@
+// The motion stage in the frame builder on a synthesized scene: a textured
+// wall 2 m away, the camera sliding along it (2 px a frame), a "person" who is
+// part of the still wall and a "box" whose texture slides over the wall. With
+// exact poses, the person leaves the mask after the evidence window and its
+// features are used; the box, of a class never masked, is masked once its
+// motion is seen.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "stillslam/core/error.h"
+#include "stillslam/segmentation/segmentation_worker.h"
+#include "stillslam/tracking/frame_builder.h"
+#include "stillslam/tracking/motion_stage.h"
+
+namespace stillslam {
+namespace {
+
+constexpr double kFx = 500, kDepth = 2.0;
+constexpr int kShiftPx = 2;     // camera motion, image pixels per frame
+constexpr int kBoxSpeedPx = 3;  // the box's own motion, pixels per frame
+const cv::Rect kPerson(120, 140, 140, 220);  // in frame 0
+const cv::Rect kBox(420, 200, 110, 110);     // in frame 0
+
+cv::Mat texture(int rows, int cols, int seed) {
+  cv::Mat noise(rows, cols, CV_8U);
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
+  cv::Mat img;
+  cv::GaussianBlur(noise, img, cv::Size(0, 0), 1.5);
+  cv::normalize(img, img, 0, 255, cv::NORM_MINMAX);
+  return img;
+}
+
+cv::Rect person_at(int k) { return kPerson - cv::Point(kShiftPx * k, 0); }
+cv::Rect box_at(int k, bool box_moves) { return kBox - cv::Point(kShiftPx * k - (box_moves ? kBoxSpeedPx * k : 0), 0); }
+
+struct Scene {
+  cv::Mat wall = texture(480, 640 + 200, 1);
+  cv::Mat box = texture(kBox.height, kBox.width, 2);
+  bool box_moves = true;
+  cv::Mat gray(int k) const {
+    cv::Mat img = wall(cv::Rect(kShiftPx * k, 0, 640, 480)).clone();
+    box.copyTo(img(box_at(k, box_moves)));
+    return img;
+  }
+};
+
+// The person and the box of frame k (the frame index is the call count).
+class SceneSegmenter final : public Segmenter {
+ public:
+  explicit SceneSegmenter(bool box_moves) : box_moves_(box_moves) {}
+  std::vector<Detection> segment(const cv::Mat& bgr) override {
+    const int k = calls_++;
+    auto detection = [&](int class_id, const char* name, cv::Rect r) {
+      Detection d;
+      d.class_id = class_id;
+      d.class_name = name;
+      d.score = 1.f;
+      d.box = r;
+      d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
+      d.mask(r).setTo(255);
+      return d;
+    };
+    return {detection(0, "person", person_at(k)), detection(-1, "box", box_at(k, box_moves_))};
+  }
+
+ private:
+  bool box_moves_;
+  int calls_ = 0;
+};
+
+struct StageRun {
+  std::vector<MotionFrameStats> stats;
+  std::vector<double> masked_share_person, masked_share_box;  // of the region in frame.dynamic_mask()
+};
+
+StageRun run_scene(int frames, bool box_moves, MotionOptions options) {
+  const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
+  const auto setup = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 3.0);
+  SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves), {0}, 0);
+  FrameBuilder builder(setup, SensorType::Rgbd, OrbOptions{}, &worker);
+  options.enabled = true;
+  MotionStage stage(setup->camera, OrbOptions{}, {0}, 0, options);
+  builder.set_motion_stage(&stage);
+  Scene scene;
+  scene.box_moves = box_moves;
+  StageRun out;
+  for (int k = 0; k < frames; ++k) {
+    SensorFrame in;
+    in.gray = scene.gray(k);
+    cv::cvtColor(in.gray, in.color, cv::COLOR_GRAY2BGR);
+    in.depth = cv::Mat(480, 640, CV_32F, cv::Scalar(static_cast<float>(kDepth)));
+    in.index = static_cast<std::size_t>(k);
+    in.name = "frame " + std::to_string(k);
+    FrameBuildStats stats;
+    Frame frame = builder.build(in, static_cast<std::uint64_t>(k), &stats);
+    // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
+    Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+    T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
+    frame.set_pose(T_world_cam.inverse());
+    stage.on_tracked(frame, true);
+    out.stats.push_back(stats.motion);
+    const cv::Mat1b& mask = frame.dynamic_mask();
+    auto share = [&](cv::Rect r) {
+      r &= cv::Rect(0, 0, 640, 480);
+      return mask.empty() ? 0.0 : cv::countNonZero(mask(r)) / static_cast<double>(r.area());
+    };
+    out.masked_share_person.push_back(share(person_at(k)));
+    out.masked_share_box.push_back(share(box_at(k, box_moves)));
+  }
+  return out;
+}
+
+TEST(MotionStage, StillPersonLeavesTheMaskMovingBoxEntersIt) {
+  MotionOptions o;
+  o.span = 6;
+  o.person_frames = 10;
+  const StageRun r = run_scene(30, true, o);
+  // Class-only at first: the person masked, the box not.
+  EXPECT_EQ(r.masked_share_person[0], 1.0);
+  EXPECT_EQ(r.masked_share_box[0], 0.0);
+  EXPECT_GT(r.stats[0].instance_features, 50);
+  EXPECT_GT(r.stats[0].features_removed_by_class, 0);
+  // Static after span + person_frames judged frames: from the frame after that on, unmasked.
+  const int first_static = o.span + o.person_frames;
+  for (int k = first_static; k < 30; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(r.masked_share_person[k], 0.0);
+    EXPECT_EQ(r.stats[k].static_instances, 1);
+    EXPECT_GT(r.stats[k].features_kept_by_motion, 20);
+  }
+  for (int k = 0; k < first_static; ++k) EXPECT_EQ(r.stats[k].features_kept_by_motion, 0) << k;
+  // The box moves 3 px a frame against the wall: 18 px over the span, seen at
+  // the first comparison, masked from the next frame on.
+  for (int k = 0; k <= o.span; ++k) EXPECT_EQ(r.masked_share_box[k], 0.0) << k;
+  for (int k = o.span + 1; k < 30; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(r.masked_share_box[k], 1.0);
+    EXPECT_EQ(r.stats[k].moving_instances, 1);
+    EXPECT_GT(r.stats[k].features_removed_by_motion, 0);
+  }
+}
+
+TEST(MotionStage, StillBoxStaysUnmasked) {
+  const StageRun r = run_scene(20, false, MotionOptions{});
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_EQ(r.masked_share_box[k], 0.0) << k;
+    EXPECT_EQ(r.stats[k].moving_instances, 0) << k;
+  }
+}
+
+TEST(MotionStage, OptionsOutOfRangeNameTheField) {
+  MotionOptions o;
+  o.span = 0;
+  try {
+    o.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MotionOptions.span"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace stillslam
