@@ -8,7 +8,10 @@
 //
 // "Dynamic" keypoint: within --margin px of the frame's ground-truth mask.
 // Per stage (motion model, reference keyframe, lost, local map): matches and
-// inliers, and how many of them are dynamic. Per keyframe: depth points
+// inliers, and how many of them are dynamic; of those, the matches whose map
+// point has static evidence (tracking/static_evidence.h: they alone move the
+// pose), and the stages where too few had it and the pose came from all
+// matches (the fallback). Per keyframe: depth points
 // created on dynamic pixels. The map is scanned at each keyframe: every new
 // map point (from keyframe depth or local-mapping triangulation) is classed
 // by the pixel it was first observed at, and its lifetime (keyframes until it
@@ -20,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -30,6 +34,7 @@
 #include "stillslam/io/trajectory.h"
 #include "stillslam/settings/settings.h"
 #include "stillslam/system/dataset_runner.h"
+#include "stillslam/tracking/static_evidence.h"
 
 namespace fs = std::filesystem;
 using namespace stillslam;
@@ -47,6 +52,11 @@ struct Args {
 struct StageCount {
   int frames = 0;
   long matches = 0, dynamic_matches = 0, inliers = 0, dynamic_inliers = 0;
+  // Matches with static evidence; "born dynamic": the map point was made on a
+  // dynamic pixel (not a static point mismatched onto a moving thing).
+  long evidence = 0, evidence_dynamic = 0, evidence_inliers = 0, evidence_dynamic_inliers = 0;
+  long evidence_born_dynamic_inliers = 0;
+  int fallbacks = 0;
 };
 
 struct FrameRecord {
@@ -54,6 +64,10 @@ struct FrameRecord {
   int local_inliers = -1, local_dynamic_inliers = 0, local_matches = 0, local_dynamic_matches = 0;
   int keyframe_new_points = 0, keyframe_new_dynamic = 0;
   int first_matches = 0, first_dynamic_matches = 0, first_inliers = 0, first_dynamic_inliers = 0;  // motion model / reference / lost
+  // Static-evidence matches of the first stage and of the local map: matches,
+  // dynamic, inliers, dynamic inliers, born-dynamic inliers; fallback flags.
+  std::array<int, 5> first_evidence{}, local_evidence{};
+  bool first_fallback = false, local_fallback = false;
   bool keyframe = false;
   std::optional<Eigen::Isometry3d> T_world_cam;
   double drift = -1;
@@ -68,7 +82,8 @@ struct PointLife {
 
 class DynamicCounter {
  public:
-  DynamicCounter(std::vector<cv::Mat1b> masks) : masks_(std::move(masks)) {}
+  DynamicCounter(std::vector<cv::Mat1b> masks, StaticEvidenceOptions evidence)
+      : masks_(std::move(masks)), evidence_(evidence) {}
 
   bool dynamic(std::uint64_t frame, const cv::KeyPoint& kp) const {
     if (frame >= masks_.size()) return false;
@@ -86,6 +101,7 @@ class DynamicCounter {
     StageCount& c = stages_[stage];
     ++c.frames;
     int matches = 0, dyn_matches = 0, inliers = 0, dyn_inliers = 0;
+    std::array<int, 5> ev{};
     for (std::size_t i = 0; i < frame.size(); ++i) {
       const MapPointPtr& mp = frame.map_point(i);
       if (!mp) continue;
@@ -96,7 +112,25 @@ class DynamicCounter {
         ++inliers;
         dyn_inliers += dyn;
       }
+      if (!has_static_evidence(*mp, evidence_)) continue;
+      ++ev[0];
+      ev[1] += dyn;
+      if (frame.is_outlier(i)) continue;
+      ++ev[2];
+      ev[3] += dyn;
+      const auto life = points_.find(mp->id());
+      ev[4] += dyn && life != points_.end() && life->second.dynamic;
     }
+    // As refine_pose_on_evidence decides (the inlier test after the fact:
+    // with the fallback the flags come from the all-match optimization).
+    const bool fallback = evidence_.enabled && stage != TrackingStage::Lost &&
+                          (ev[0] < evidence_.min_points || ev[2] < evidence_.min_points);
+    c.evidence += ev[0];
+    c.evidence_dynamic += ev[1];
+    c.evidence_inliers += ev[2];
+    c.evidence_dynamic_inliers += ev[3];
+    c.evidence_born_dynamic_inliers += ev[4];
+    c.fallbacks += fallback;
     c.matches += matches;
     c.dynamic_matches += dyn_matches;
     c.inliers += inliers;
@@ -106,11 +140,15 @@ class DynamicCounter {
       r.first_dynamic_matches = dyn_matches;
       r.first_inliers = inliers;
       r.first_dynamic_inliers = dyn_inliers;
+      r.first_evidence = ev;
+      r.first_fallback = fallback;
     } else {
       r.local_matches = matches;
       r.local_dynamic_matches = dyn_matches;
       r.local_inliers = inliers;
       r.local_dynamic_inliers = dyn_inliers;
+      r.local_evidence = ev;
+      r.local_fallback = fallback;
       r.T_world_cam = frame.T_cam_world().inverse();
     }
   }
@@ -172,6 +210,7 @@ class DynamicCounter {
   }
 
   std::vector<cv::Mat1b> masks_;
+  StaticEvidenceOptions evidence_;
   std::map<TrackingStage, StageCount> stages_;
   std::vector<FrameRecord> frames_;
   std::unordered_map<std::uint64_t, PointLife> points_;
@@ -205,7 +244,7 @@ int run(const Args& a) {
     if (a.margin > 0) cv::dilate(m, m, kernel);
     masks.push_back(m);
   }
-  DynamicCounter counter(std::move(masks));
+  DynamicCounter counter(std::move(masks), settings.tracking.static_evidence);
 
   RunOptions options;
   options.system.use_segmentation = a.oracle;
@@ -255,7 +294,21 @@ int run(const Args& a) {
                 dyn_outlier);
     out["stages"][to_string(stage)] = {{"frames", c.frames},         {"matches", c.matches},
                                        {"dynamic_matches", c.dynamic_matches}, {"inliers", c.inliers},
-                                       {"dynamic_inliers", c.dynamic_inliers}};
+                                       {"dynamic_inliers", c.dynamic_inliers}, {"evidence", c.evidence},
+                                       {"evidence_dynamic", c.evidence_dynamic},
+                                       {"evidence_inliers", c.evidence_inliers},
+                                       {"evidence_dynamic_inliers", c.evidence_dynamic_inliers},
+                                       {"evidence_born_dynamic_inliers", c.evidence_born_dynamic_inliers},
+                                       {"fallbacks", c.fallbacks}};
+  }
+  std::printf("  %-20s %9s %7s %9s %7s %9s %9s\n", "static evidence", "matches", "dyn %", "inliers", "dyn %",
+              "born dyn%", "fallbacks");
+  for (const auto& [stage, c] : counter.stages()) {
+    std::printf("  %-20s %9.1f %7.2f %9.1f %7.2f %9.2f %9d\n", to_string(stage),
+                c.frames ? static_cast<double>(c.evidence) / c.frames : 0.0, share(c.evidence_dynamic, c.evidence),
+                c.frames ? static_cast<double>(c.evidence_inliers) / c.frames : 0.0,
+                share(c.evidence_dynamic_inliers, c.evidence_inliers),
+                share(c.evidence_born_dynamic_inliers, c.evidence_inliers), c.fallbacks);
   }
   long kf_points = 0, kf_dynamic = 0;
   for (const FrameRecord& f : counter.frames()) {
@@ -351,6 +404,10 @@ int run(const Args& a) {
                              {"first_dynamic_inliers", f.first_dynamic_inliers},
                              {"keyframe_new_points", f.keyframe_new_points},
                              {"keyframe_new_dynamic", f.keyframe_new_dynamic},
+                             {"first_evidence", f.first_evidence},
+                             {"first_fallback", f.first_fallback},
+                             {"local_evidence", f.local_evidence},
+                             {"local_fallback", f.local_fallback},
                              {"drift", f.drift},
                              {"est", {f.est.x(), f.est.y(), f.est.z()}},
                              {"truth", {f.truth.x(), f.truth.y(), f.truth.z()}}});

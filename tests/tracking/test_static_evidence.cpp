@@ -50,6 +50,9 @@ TEST(StaticEvidence, OptionsAreChecked) {
   options = {};
   options.min_points = 2;
   EXPECT_THROW(options.check(), OptionError);
+  options = {};
+  options.quiet_frames = -1;
+  EXPECT_THROW(options.check(), OptionError);
 }
 
 // Frames of the static scene plus a near cluster (its own scene moved to a
@@ -192,6 +195,70 @@ TEST(StaticEvidence, TrackerFollowsTheStaticSceneNotTheNearCluster) {
   EXPECT_EQ(on.lost_frames, 0);
   EXPECT_LT(on.max_error, 1e-3);
   EXPECT_GT(off.max_error, 0.1);  // 0.32 m when written: it follows the cluster
+}
+
+// A cluster that stood still long enough for its points to gain evidence
+// (observed 30 frames apart, like the background) and has started to move
+// (4 cm towards the camera): the frame before rejected its points. With
+// Tracking.staticEvidenceQuietFrames they do not move the pose.
+TEST(StaticEvidence, QuietFramesDropPointsRejectedJustBefore) {
+  ClusterWorld world;
+  Map map;
+  const Eigen::Isometry3d T = test::pose_at(0.02);
+  std::vector<bool> on_cluster;
+  Frame frame = world.make_frame(31, T, true, &on_cluster);
+  world.move_cluster(Eigen::Vector3d(0, 0, 0.04));
+  Frame before = world.make_frame(31, T, true);
+  before.set_pose(T);
+  Frame early_frame = world.make_frame(0, T, true), late_frame = world.make_frame(29, T, true);
+  early_frame.set_pose(T);
+  late_frame.set_pose(T);
+  const KeyFramePtr early = map.create_keyframe(early_frame), late = map.create_keyframe(late_frame);
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    MapPointPtr mp = map.create_map_point(*before.unproject(i), early.get());
+    mp->add_observation(early.get(), i);
+    mp->add_observation(late.get(), i);
+    if (on_cluster[i]) mp->record_outlier_frame(30);
+    frame.set_map_point(i, mp);
+  }
+  StaticEvidenceOptions options;
+  options.enabled = true;
+  auto error_of = [&](const StaticEvidenceOptions& o, int* cluster_inliers) {
+    Frame f = frame;
+    f.set_pose(test::pose_at(0.02) * Eigen::Translation3d(0.01, -0.01, 0.02));
+    refine_pose_on_evidence(f, PoseOptimizerOptions{}, o);
+    *cluster_inliers = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) *cluster_inliers += on_cluster[i] && !f.is_outlier(i);
+    return (f.T_cam_world().inverse().translation() - T.inverse().translation()).norm();
+  };
+  int quiet_inliers = 0, plain_inliers = 0;
+  options.quiet_frames = 10;
+  const double quiet = error_of(options, &quiet_inliers);
+  options.quiet_frames = 0;
+  const double plain = error_of(options, &plain_inliers);
+  std::printf("pose error %.5f m with quiet frames (%d cluster inliers), %.5f m without (%d)\n", quiet,
+              quiet_inliers, plain, plain_inliers);
+  EXPECT_LT(quiet, 1e-4);
+  EXPECT_GT(plain, 5e-3);
+  // Rejected 11 frames before: evidence again.
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (on_cluster[i]) frame.map_point(i)->record_outlier_frame(20);
+  }
+  options.quiet_frames = 10;
+  EXPECT_GT(error_of(options, &quiet_inliers), 5e-3);
+}
+
+TEST(StaticEvidence, RecentlyRejected) {
+  MapPoint mp(1, Eigen::Vector3d(0, 0, 3), nullptr);
+  StaticEvidenceOptions options;
+  options.quiet_frames = 10;
+  EXPECT_FALSE(recently_rejected(mp, options, 50));
+  mp.record_outlier_frame(40);
+  EXPECT_TRUE(recently_rejected(mp, options, 50));
+  EXPECT_FALSE(recently_rejected(mp, options, 51));
+  EXPECT_FALSE(recently_rejected(mp, options, 40));  // this frame's own rejection is not known yet
+  options.quiet_frames = 0;
+  EXPECT_FALSE(recently_rejected(mp, options, 45));
 }
 
 }  // namespace

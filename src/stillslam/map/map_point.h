@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <opencv2/core.hpp>
 
 #include "stillslam/map/keyframe_order.h"
@@ -67,6 +68,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // an outlier by the pose optimization (an inlier match resets it).
   int outlier_streak() const { return outlier_streak_; }
   void record_tracking_match(bool inlier) { outlier_streak_ = inlier ? 0 : outlier_streak_ + 1; }
+  // The last frame whose final pose rejected the point (none yet: nullopt).
+  std::optional<std::uint64_t> last_outlier_frame() const { return last_outlier_frame_; }
+  void record_outlier_frame(std::uint64_t frame_id) { last_outlier_frame_ = frame_id; }
   int visible() const { return visible_; }
   int found() const { return found_; }
 
@@ -97,6 +101,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   KeyFrame* reference_;
   int visible_ = 1, found_ = 1;
   int outlier_streak_ = 0;  // not saved in map files: a tracking statistic like the two above
+  std::optional<std::uint64_t> last_outlier_frame_;  // nor this one
   bool bad_ = false;
   std::shared_ptr<MapPoint> replaced_by_;
 };

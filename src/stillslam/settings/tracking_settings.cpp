@@ -52,6 +52,8 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
                "StaticEvidenceOptions.min_span_frames", {0, 100000});
   keys.integer("staticEvidenceMinPoints", tracker.static_evidence.min_points,
                "StaticEvidenceOptions.min_points", {3, 50000});
+  keys.integer("staticEvidenceQuietFrames", tracker.static_evidence.quiet_frames,
+               "StaticEvidenceOptions.quiet_frames", {0, 100000});
   keys.check([&] { tracker.check(); });
   // Relocalization.
   keys.integer("relocMinBowMatches", relocalizer.min_bow_matches, "RelocalizerOptions.min_bow_matches", {1, 50000});

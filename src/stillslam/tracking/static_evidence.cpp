@@ -24,6 +24,12 @@ bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& opt
          observation_span_frames(point) >= static_cast<std::uint64_t>(options.min_span_frames);
 }
 
+bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& options, std::uint64_t frame_id) {
+  const auto last = point.last_outlier_frame();
+  return options.quiet_frames > 0 && last && *last < frame_id &&
+         frame_id - *last <= static_cast<std::uint64_t>(options.quiet_frames);
+}
+
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options) {
   if (!options.enabled) return refine_pose(frame, pose);
   const CameraSetup& setup = frame.setup();
@@ -38,7 +44,7 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
     obs.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
     obs.u_right = frame.u_right(i);
     obs.inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
-    if (has_static_evidence(*mp, options)) {
+    if (has_static_evidence(*mp, options) && !recently_rejected(*mp, options, frame.id())) {
       trusted.push_back(obs);
       trusted_index.push_back(i);
     } else {
@@ -71,6 +77,7 @@ void StaticEvidenceOptions::check() const {
   using namespace option_check;
   at_least("StaticEvidenceOptions.min_span_frames", min_span_frames, 0);
   at_least("StaticEvidenceOptions.min_points", min_points, 3);
+  at_least("StaticEvidenceOptions.quiet_frames", quiet_frames, 0);
 }
 
 }  // namespace stillslam

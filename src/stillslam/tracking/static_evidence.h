@@ -28,6 +28,13 @@ struct StaticEvidenceOptions {
   // Tracking.staticEvidenceMinPoints: fewer matches (or inliers) with
   // evidence than this: the pose from all matches, as without the rule.
   int min_points = 40;
+  // Tracking.staticEvidenceQuietFrames: a point that a frame's final pose
+  // rejected as an outlier within this many frames has no evidence (0: no
+  // such rule). A thing that stood still long enough to gain evidence and
+  // then starts to move is rejected by its first moving parts, and those
+  // stop moving the pose. Off by default: mixed on the issue #20 renders
+  // (n1 stereo 0.21 -> 0.010 m, wx 0.37 -> 0.45 m, bench/README.md).
+  int quiet_frames = 0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -37,6 +44,10 @@ struct StaticEvidenceOptions {
 std::uint64_t observation_span_frames(const MapPoint& point);
 
 bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& options);
+
+// Whether a frame's final pose rejected the point within options.quiet_frames
+// frames before `frame_id` (never with quiet_frames 0).
+bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& options, std::uint64_t frame_id);
 
 // refine_pose (tracking/pose_refinement.h) with the rule above: outlier
 // flags are set on all matches, the pose comes from those with evidence.

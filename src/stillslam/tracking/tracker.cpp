@@ -333,6 +333,7 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
     if (mp->num_observations() > 0) mp->record_tracking_match(!frame.is_outlier(i));
+    if (mp->num_observations() > 0 && frame.is_outlier(i)) mp->record_outlier_frame(frame.id());
     if (frame.is_outlier(i)) continue;
     mp->increase_found();
     if (mp->num_observations() > 0) ++inliers;
