@@ -210,7 +210,8 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
                            "LocalMapping.baSplitStereo: 0\nLocalMapping.baFunctionTolerance: 1e-5\n"
                            "LocalMapping.baMaxSeconds: 0.5\nLocalMapping.windowKeyframes: 9\n"
                            "LocalMapping.windowFixedKeyframes: 0\nLocalMapping.windowPoints: 1500\n"
-                           "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n";
+                           "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n"
+                           "LocalMapping.baKeepInterrupted: 0\n";
   const Settings s = load_settings(dir.write("m.yaml", text));
   const LocalMapperOptions& m = s.local_mapping;
   EXPECT_FALSE(m.bundle_adjustment.split_stereo);
@@ -221,6 +222,7 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
   EXPECT_EQ(m.window.max_points, 1500);
   EXPECT_EQ(m.window.max_observations, 7000);
   EXPECT_TRUE(m.pause_aborts_bundle_adjustment);
+  EXPECT_FALSE(m.bundle_adjustment.keep_progress_on_abort);
   EXPECT_FALSE(m.enable_bundle_adjustment);
   EXPECT_EQ(m.bundle_adjustment.num_threads, 2);
   EXPECT_EQ(m.bundle_adjustment.iterations, 7);

@@ -104,6 +104,9 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       const BundleAdjustmentAbort cause = result.aborted ? abort_cause_.load() : BundleAdjustmentAbort::None;
       delta.bundle_adjustments_aborted_by_tracking = cause == BundleAdjustmentAbort::Tracking ? 1 : 0;
       delta.bundle_adjustments_aborted_by_pause = cause == BundleAdjustmentAbort::Pause ? 1 : 0;
+      const bool cut_short = result.aborted && result.applied_steps > 0;
+      delta.bundle_adjustments_cut_short = cut_short ? 1 : 0;
+      delta.bundle_adjustments_discarded = result.aborted && !cut_short ? 1 : 0;
       delta.bundle_adjustment_ms = ba.elapsed_ms();
       LocalBundleAdjustmentRecord record;
       record.keyframes = window.keyframes;
@@ -114,6 +117,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       record.ms = delta.bundle_adjustment_ms;
       record.cpu_ms = ba_cpu.elapsed_ms();
       record.aborted = result.aborted;
+      record.cut_short = cut_short;
       record.abort_cause = cause;
       delta.bundle_adjustment_runs.push_back(record);
     }
