@@ -92,7 +92,19 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       Stopwatch ba;
       ThreadCpuStopwatch ba_cpu;
       BundleAdjustmentOptions ba_options = options_.bundle_adjustment;
-      ba_options.abort = threaded ? &abort_ba_ : nullptr;
+      // Ceres sees the interrupt only after iterations_before_interrupt
+      // iterations (counted over the passes, each pass's start included).
+      std::atomic<bool> ba_abort{false};
+      int calls = 0;
+      if (threaded) {
+        ba_options.abort = &ba_abort;
+        const int gate = options_.iterations_before_interrupt;
+        ba_options.on_iteration = [this, &ba_abort, &calls, gate, hook = options_.bundle_adjustment.on_iteration] {
+          if (hook) hook();
+          if (calls++ >= gate && abort_ba_.load()) ba_abort = true;
+        };
+        if (gate == 0 && abort_ba_.load()) ba_abort = true;
+      }
       const BundleAdjustmentResult result = solve_local_window(kf->setup().camera, problem, ba_options);
       LocalBundleAdjustmentStats window;
       {

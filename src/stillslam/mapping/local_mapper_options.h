@@ -28,6 +28,10 @@ struct LocalMapperOptions {
   // its BA (the loop waits for it); true aborts that BA, as before 2026-12-02
   // (bench/README.md, issue #21: nearly all aborted BAs were these).
   bool pause_aborts_bundle_adjustment = false;
+  // An interrupt stops the running local BA only once it has done this many
+  // Ceres iterations (0: at once), so that it has a step to keep
+  // (bundle_adjustment.keep_progress_on_abort) instead of nothing.
+  int iterations_before_interrupt = 1;
   // Wired by System (both optional). Called outside the map lock: every
   // finished keyframe (to loop closing) and the ids of culled keyframes (to
   // drop them from place recognition).
@@ -47,6 +51,10 @@ struct LocalMapperOptions {
     o.function_tolerance = 1e-4;
     // An interrupted BA keeps what it reached (ORB-SLAM does too).
     o.keep_progress_on_abort = true;
+    // One 3-row block per stereo/RGB-D observation: on the real windows it is
+    // faster than the split (bench/README.md, issue #21 session 6: -22 % CPU
+    // per BA on RGB-D halfsphere, -13 % on a stereo render, same ATE).
+    o.split_stereo = false;
     return o;
   }
   // Throws OptionError naming the field, its value and the valid range.
