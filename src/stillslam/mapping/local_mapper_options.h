@@ -52,8 +52,9 @@ struct LocalMapperOptions {
     // An interrupted BA keeps what it reached (ORB-SLAM does too).
     o.keep_progress_on_abort = true;
     // One 3-row block per stereo/RGB-D observation: on the real windows it is
-    // faster than the split (bench/README.md, issue #21 session 6: -22 % CPU
-    // per BA on RGB-D halfsphere, -13 % on a stereo render, same ATE).
+    // faster than the split (bench/README.md, issue #21 session 6: 13-24 %
+    // less CPU per BA on a stereo render and two RGB-D sequences; ATE 1.00x,
+    // 1.03x and 1.07x in single deterministic runs).
     o.split_stereo = false;
     return o;
   }
