@@ -141,7 +141,10 @@ TEST(LocalMapper, PauseWaitsForTheRunningBundleAdjustmentUnlessSetToAbortIt) {
     EXPECT_EQ(stats.bundle_adjustment_runs[0].abort_cause,
               aborts ? BundleAdjustmentAbort::Pause : BundleAdjustmentAbort::None);
     if (aborts) {
+      // The exact map is at its optimum: the robust pass ends at its start and
+      // the abort stops the outlier-free pass before it takes a step.
       EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, 0);
+      EXPECT_EQ(stats.bundle_adjustments_discarded, 1);
     } else {
       EXPECT_GT(stats.bundle_adjustment_runs[0].iterations, 0);
     }
@@ -185,6 +188,96 @@ TEST(LocalMapper, TrackingInterruptIsCountedAsTheAbortCause) {
   EXPECT_EQ(stats.bundle_adjustment_runs[0].abort_cause, BundleAdjustmentAbort::Tracking);
   mapper.resume();
   mapper.stop();
+}
+
+// Tracking interrupts the BA after its first Ceres step (the new keyframe's
+// pose was moved 3 cm off). By default that step is applied to the map and
+// the BA counts as cut short; with keep_progress_on_abort false the keyframe
+// keeps its start pose and the BA counts as discarded.
+TEST(LocalMapper, InterruptedBundleAdjustmentAppliesItsProgress) {
+  for (const bool keep : {true, false}) {
+    test::SyntheticScene scene;
+    test::MapBuilder builder(scene);
+    std::vector<KeyFramePtr> kfs;
+    for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+    const Eigen::Isometry3d truth = kfs[4]->T_cam_world();
+    Eigen::Isometry3d start = truth;
+    start.translation() += Eigen::Vector3d(0.03, -0.01, 0.02);
+    kfs[4]->set_pose(start);
+    const double start_error = (start.translation() - truth.translation()).norm();
+
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, true);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    o.bundle_adjustment.keep_progress_on_abort = keep;
+    LocalMapper* mapper_ptr = nullptr;
+    int calls = 0;
+    o.bundle_adjustment.on_iteration = [&] {
+      if (++calls == 2) mapper_ptr->interrupt_bundle_adjustment();  // after iteration 1
+    };
+    LocalMapper mapper(builder.map(), o);
+    mapper_ptr = &mapper;
+    mapper.insert_keyframe(kfs[4]);
+    mapper.flush();
+    const LocalMapperStats stats = mapper.stats();
+    mapper.stop();
+    ASSERT_EQ(stats.bundle_adjustments, 1) << keep;
+    EXPECT_EQ(stats.bundle_adjustments_aborted, 1) << keep;
+    EXPECT_EQ(stats.bundle_adjustments_aborted_by_tracking, 1) << keep;
+    EXPECT_EQ(stats.bundle_adjustments_cut_short, keep ? 1 : 0);
+    EXPECT_EQ(stats.bundle_adjustments_discarded, keep ? 0 : 1);
+    ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u);
+    EXPECT_EQ(stats.bundle_adjustment_runs[0].cut_short, keep);
+    EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, 1) << keep;
+    const double error = (kfs[4]->T_cam_world().translation() - truth.translation()).norm();
+    if (keep) {
+      EXPECT_LT(error, 0.2 * start_error);  // one Gauss-Newton-like step from exact points
+    } else {
+      EXPECT_NEAR(error, start_error, 1e-9);
+    }
+  }
+}
+
+// Tracking interrupts just before the solve: with iterations_before_interrupt
+// 1 (the default) the BA does one iteration and applies it (cut short); with
+// 0 it stops before any and nothing is kept (discarded).
+TEST(LocalMapper, InterruptTakesEffectAfterTheFirstIteration) {
+  for (const int gate : {1, 0}) {
+    test::SyntheticScene scene;
+    test::MapBuilder builder(scene);
+    std::vector<KeyFramePtr> kfs;
+    for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+    const Eigen::Isometry3d truth = kfs[4]->T_cam_world();
+    Eigen::Isometry3d start = truth;
+    start.translation() += Eigen::Vector3d(0.03, -0.01, 0.02);
+    kfs[4]->set_pose(start);
+    const double start_error = (start.translation() - truth.translation()).norm();
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, true);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    o.iterations_before_interrupt = gate;
+    LocalMapper* mapper_ptr = nullptr;
+    o.on_bundle_adjustment_start = [&] { mapper_ptr->interrupt_bundle_adjustment(); };
+    LocalMapper mapper(builder.map(), o);
+    mapper_ptr = &mapper;
+    mapper.insert_keyframe(kfs[4]);
+    mapper.flush();
+    const LocalMapperStats stats = mapper.stats();
+    mapper.stop();
+    ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u) << gate;
+    EXPECT_EQ(stats.bundle_adjustments_aborted_by_tracking, 1) << gate;
+    EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, gate);
+    EXPECT_EQ(stats.bundle_adjustments_cut_short, gate);
+    EXPECT_EQ(stats.bundle_adjustments_discarded, 1 - gate);
+    const double error = (kfs[4]->T_cam_world().translation() - truth.translation()).norm();
+    if (gate == 1) {
+      EXPECT_LT(error, 0.2 * start_error);
+    } else {
+      EXPECT_NEAR(error, start_error, 1e-9);
+    }
+  }
 }
 
 }  // namespace

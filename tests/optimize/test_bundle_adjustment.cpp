@@ -166,6 +166,46 @@ TEST(BundleAdjustment, AbortFlagStopsBeforeWork) {
   }
 }
 
+// The abort flag set after the first iteration of the robust pass: with
+// keep_progress_on_abort the result is the state after that one step (the
+// same as a one-iteration BA), otherwise the start state comes back.
+TEST(BundleAdjustment, AbortMidPassKeepsTheAcceptedIterateOnlyWhenAsked) {
+  const PinholeCamera cam(testing::tum_like_calibration(), 40.0);
+  const BaScene s = make_scene(cam, 35);
+  std::vector<Eigen::Isometry3d> initial;
+  for (const auto& kf : s.keyframes) initial.push_back(kf.T_cam_world);
+  const double initial_error = rms_pose_error(initial, s.true_poses);
+  BundleAdjustmentOptions one_step;
+  one_step.iterations = 1;
+  one_step.outlier_rounds = 0;
+  const auto stepped = bundle_adjust(cam, s.keyframes, s.points, s.observations, one_step);
+  ASSERT_EQ(stepped.applied_steps, 1);
+  ASSERT_LT(rms_pose_error(stepped.T_cam_world, s.true_poses), 0.5 * initial_error);
+  for (const bool keep : {true, false}) {
+    std::atomic<bool> abort{false};
+    int calls = 0;
+    BundleAdjustmentOptions o;
+    o.abort = &abort;
+    o.keep_progress_on_abort = keep;
+    o.on_iteration = [&] {
+      if (++calls == 2) abort = true;  // call 1: iteration 0 (start), call 2: after iteration 1
+    };
+    const auto r = bundle_adjust(cam, s.keyframes, s.points, s.observations, o);
+    EXPECT_TRUE(r.aborted) << keep;
+    EXPECT_EQ(calls, 2) << keep;  // the outlier-free pass never started
+    EXPECT_EQ(r.iterations, 1) << keep;
+    EXPECT_EQ(r.applied_steps, keep ? 1 : 0);
+    for (std::size_t k = 0; k < s.keyframes.size(); ++k) {
+      const Eigen::Isometry3d& expected = keep ? stepped.T_cam_world[k] : s.keyframes[k].T_cam_world;
+      EXPECT_TRUE(r.T_cam_world[k].isApprox(expected, 1e-12)) << keep << " keyframe " << k;
+    }
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      const Eigen::Vector3d& expected = keep ? stepped.points[i] : s.points[i].position_world;
+      EXPECT_TRUE(r.points[i].isApprox(expected, 1e-12)) << keep << " point " << i;
+    }
+  }
+}
+
 TEST(BundleAdjustment, RejectsBadIndices) {
   const PinholeCamera cam(testing::tum_like_calibration());
   BaObservation o;

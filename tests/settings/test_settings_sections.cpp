@@ -207,13 +207,14 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
                            "LocalMapping.fusionSecondNeighbours: 3\nLocalMapping.pointMinFoundRatio: 0.3\n"
                            "LocalMapping.pointMinObservations: 4\nLocalMapping.keyframeCulling: 0\n"
                            "LocalMapping.keyframeRedundancy: 0.8\nLocalMapping.keyframeMinObservers: 2\n"
-                           "LocalMapping.baSplitStereo: 0\nLocalMapping.baFunctionTolerance: 1e-5\n"
+                           "LocalMapping.baSplitStereo: 1\nLocalMapping.baFunctionTolerance: 1e-5\n"
                            "LocalMapping.baMaxSeconds: 0.5\nLocalMapping.windowKeyframes: 9\n"
                            "LocalMapping.windowFixedKeyframes: 0\nLocalMapping.windowPoints: 1500\n"
-                           "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n";
+                           "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n"
+                           "LocalMapping.baKeepInterrupted: 0\nLocalMapping.baIterationsBeforeInterrupt: 3\n";
   const Settings s = load_settings(dir.write("m.yaml", text));
   const LocalMapperOptions& m = s.local_mapping;
-  EXPECT_FALSE(m.bundle_adjustment.split_stereo);
+  EXPECT_TRUE(m.bundle_adjustment.split_stereo);
   EXPECT_DOUBLE_EQ(m.bundle_adjustment.function_tolerance, 1e-5);
   EXPECT_DOUBLE_EQ(m.bundle_adjustment.max_seconds_per_pass, 0.5);
   EXPECT_EQ(m.window.max_keyframes, 9);
@@ -221,6 +222,8 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
   EXPECT_EQ(m.window.max_points, 1500);
   EXPECT_EQ(m.window.max_observations, 7000);
   EXPECT_TRUE(m.pause_aborts_bundle_adjustment);
+  EXPECT_FALSE(m.bundle_adjustment.keep_progress_on_abort);
+  EXPECT_EQ(m.iterations_before_interrupt, 3);
   EXPECT_FALSE(m.enable_bundle_adjustment);
   EXPECT_EQ(m.bundle_adjustment.num_threads, 2);
   EXPECT_EQ(m.bundle_adjustment.iterations, 7);

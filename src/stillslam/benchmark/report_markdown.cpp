@@ -133,7 +133,9 @@ void timing_table(std::ostringstream& md, const SequenceResult& s) {
     return r ? std::to_string(r->local_ba.aborted) + " / " + std::to_string(r->local_ba.runs) + " (" +
                    num(100 * r->local_ba.aborted_share, 0) + " %; tracking " +
                    std::to_string(r->local_ba.aborted_by_tracking) + ", pause " +
-                   std::to_string(r->local_ba.aborted_by_pause) + ")"
+                   std::to_string(r->local_ba.aborted_by_pause) + "; cut short " +
+                   std::to_string(r->local_ba.cut_short) + ", discarded " +
+                   std::to_string(r->local_ba.discarded) + ", " + num(100 * r->local_ba.discarded_share, 0) + " %)"
              : std::string("n/a");
   };
   const auto ba_window = [](const RunRecord* r) {

@@ -92,7 +92,19 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       Stopwatch ba;
       ThreadCpuStopwatch ba_cpu;
       BundleAdjustmentOptions ba_options = options_.bundle_adjustment;
-      ba_options.abort = threaded ? &abort_ba_ : nullptr;
+      // Ceres sees the interrupt only after iterations_before_interrupt
+      // iterations (counted over the passes, each pass's start included).
+      std::atomic<bool> ba_abort{false};
+      int calls = 0;
+      if (threaded) {
+        ba_options.abort = &ba_abort;
+        const int gate = options_.iterations_before_interrupt;
+        ba_options.on_iteration = [this, &ba_abort, &calls, gate, hook = options_.bundle_adjustment.on_iteration] {
+          if (hook) hook();
+          if (calls++ >= gate && abort_ba_.load()) ba_abort = true;
+        };
+        if (gate == 0 && abort_ba_.load()) ba_abort = true;
+      }
       const BundleAdjustmentResult result = solve_local_window(kf->setup().camera, problem, ba_options);
       LocalBundleAdjustmentStats window;
       {
@@ -104,6 +116,9 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       const BundleAdjustmentAbort cause = result.aborted ? abort_cause_.load() : BundleAdjustmentAbort::None;
       delta.bundle_adjustments_aborted_by_tracking = cause == BundleAdjustmentAbort::Tracking ? 1 : 0;
       delta.bundle_adjustments_aborted_by_pause = cause == BundleAdjustmentAbort::Pause ? 1 : 0;
+      const bool cut_short = result.aborted && result.applied_steps > 0;
+      delta.bundle_adjustments_cut_short = cut_short ? 1 : 0;
+      delta.bundle_adjustments_discarded = result.aborted && !cut_short ? 1 : 0;
       delta.bundle_adjustment_ms = ba.elapsed_ms();
       LocalBundleAdjustmentRecord record;
       record.keyframes = window.keyframes;
@@ -114,6 +129,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       record.ms = delta.bundle_adjustment_ms;
       record.cpu_ms = ba_cpu.elapsed_ms();
       record.aborted = result.aborted;
+      record.cut_short = cut_short;
       record.abort_cause = cause;
       delta.bundle_adjustment_runs.push_back(record);
     }

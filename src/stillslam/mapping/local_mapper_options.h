@@ -28,6 +28,10 @@ struct LocalMapperOptions {
   // its BA (the loop waits for it); true aborts that BA, as before 2026-12-02
   // (bench/README.md, issue #21: nearly all aborted BAs were these).
   bool pause_aborts_bundle_adjustment = false;
+  // An interrupt stops the running local BA only once it has done this many
+  // Ceres iterations (0: at once), so that it has a step to keep
+  // (bundle_adjustment.keep_progress_on_abort) instead of nothing.
+  int iterations_before_interrupt = 1;
   // Wired by System (both optional). Called outside the map lock: every
   // finished keyframe (to loop closing) and the ids of culled keyframes (to
   // drop them from place recognition).
@@ -45,6 +49,13 @@ struct LocalMapperOptions {
     // less than 0.01 % (bench/README.md, 2026-12-02: 1e-3 saves a little more
     // CPU but lost accuracy on the demo).
     o.function_tolerance = 1e-4;
+    // An interrupted BA keeps what it reached (ORB-SLAM does too).
+    o.keep_progress_on_abort = true;
+    // One 3-row block per stereo/RGB-D observation: on the real windows it is
+    // faster than the split (bench/README.md, issue #21 session 6: 13-24 %
+    // less CPU per BA on a stereo render and two RGB-D sequences; ATE 1.00x,
+    // 1.03x and 1.07x in single deterministic runs).
+    o.split_stereo = false;
     return o;
   }
   // Throws OptionError naming the field, its value and the valid range.
@@ -61,6 +72,9 @@ struct LocalBundleAdjustmentRecord {
   int iterations = 0;
   double ms = 0, cpu_ms = 0;
   bool aborted = false;
+  // Aborted with some accepted steps applied to the map (cut short) rather
+  // than none (discarded).
+  bool cut_short = false;
   BundleAdjustmentAbort abort_cause = BundleAdjustmentAbort::None;
 };
 
@@ -90,6 +104,8 @@ struct LocalMapperStats {
   int bundle_adjustments_aborted = 0;
   int bundle_adjustments_aborted_by_tracking = 0;  // tracking needed a keyframe at once
   int bundle_adjustments_aborted_by_pause = 0;     // loop closing paused the mapper
+  int bundle_adjustments_cut_short = 0;  // aborted, the progress so far applied
+  int bundle_adjustments_discarded = 0;  // aborted before any accepted step was kept
   int bundle_adjustments_skipped = 0;  // hurried keyframes (see local_mapper.cpp)
   double bundle_adjustment_ms = 0;  // total
   double total_ms = 0;              // total processing time
@@ -106,6 +122,8 @@ struct LocalMapperStats {
     bundle_adjustments_aborted += o.bundle_adjustments_aborted;
     bundle_adjustments_aborted_by_tracking += o.bundle_adjustments_aborted_by_tracking;
     bundle_adjustments_aborted_by_pause += o.bundle_adjustments_aborted_by_pause;
+    bundle_adjustments_cut_short += o.bundle_adjustments_cut_short;
+    bundle_adjustments_discarded += o.bundle_adjustments_discarded;
     bundle_adjustments_skipped += o.bundle_adjustments_skipped;
     bundle_adjustment_ms += o.bundle_adjustment_ms;
     total_ms += o.total_ms;

@@ -19,15 +19,21 @@
 namespace stillslam {
 namespace {
 
+// Stops the solve once the abort flag is set: as converged (Ceres writes the
+// best accepted iterate back) or as failed (Ceres keeps the start state).
 class AbortCallback final : public ceres::IterationCallback {
  public:
-  explicit AbortCallback(const std::atomic<bool>* abort) : abort_(abort) {}
+  explicit AbortCallback(const BundleAdjustmentOptions& options) : options_(options) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return abort_ && abort_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    if (options_.on_iteration) options_.on_iteration();
+    if (!options_.abort || !options_.abort->load()) return ceres::SOLVER_CONTINUE;
+    fired = true;
+    return options_.keep_progress_on_abort ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_ABORT;
   }
+  bool fired = false;  // stopped the current pass
 
  private:
-  const std::atomic<bool>* abort_;
+  const BundleAdjustmentOptions& options_;
 };
 
 // Dense Schur is fastest while the reduced camera system is small.
@@ -108,7 +114,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   ceres::HuberLoss huber_stereo(std::sqrt(options.chi2_stereo));
   ceres::HuberLoss huber_right(std::sqrt(kChi2OneDof95));
   Se3LeftManifold manifold;
-  AbortCallback abort_callback(options.abort);
+  AbortCallback abort_callback(options);
 
   auto run_pass = [&](bool robust, int iterations) {
     ceres::Problem::Options problem_options;
@@ -163,23 +169,32 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
     solver_options.num_threads = std::max(1, options.num_threads);
     solver_options.logging_type = ceres::SILENT;
     solver_options.minimizer_progress_to_stdout = false;
-    if (options.abort) solver_options.callbacks.push_back(&abort_callback);
+    if (options.abort || options.on_iteration) solver_options.callbacks.push_back(&abort_callback);
+    abort_callback.fired = false;
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
     // Entry 0 of summary.iterations is the initial state.
     result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);
-    if (summary.termination_type == ceres::USER_FAILURE) result.aborted = true;
+    if (abort_callback.fired) result.aborted = true;
+    if (summary.IsSolutionUsable()) {
+      for (std::size_t it = 1; it < summary.iterations.size(); ++it) {
+        if (summary.iterations[it].step_is_successful) ++result.applied_steps;
+      }
+    }
   };
 
-  auto aborted = [&] { return result.aborted || (options.abort && options.abort->load()); };
-  if (!aborted()) run_pass(options.huber, options.iterations);
+  // A pass is not started once the flag is set.
+  auto stop = [&] {
+    if (options.abort && options.abort->load()) result.aborted = true;
+    return result.aborted;
+  };
+  if (!stop()) run_pass(options.huber, options.iterations);
   classify(false);
-  for (int round = 0; round < options.outlier_rounds && !aborted(); ++round) {
+  for (int round = 0; round < options.outlier_rounds && !stop(); ++round) {
     active = result.observation_inlier;
     run_pass(false, options.iterations_after_outliers);
     classify(false);
   }
-  result.aborted = aborted();
   result.final_cost = classify(false);
 
   result.T_cam_world.resize(keyframes.size());

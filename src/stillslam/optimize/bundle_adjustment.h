@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "stillslam/geometry/pinhole_camera.h"
@@ -62,6 +63,13 @@ struct BundleAdjustmentOptions {
   // Wall-clock budget of each pass in seconds (0: none). Not deterministic.
   double max_seconds_per_pass = 0;
   const std::atomic<bool>* abort = nullptr;  // stop early when set (checked every iteration)
+  // When abort stops a pass: true keeps the pass's last accepted iterate (Ceres
+  // ends it as converged and writes that state back); false leaves the state
+  // the pass started from (Ceres' SOLVER_ABORT).
+  bool keep_progress_on_abort = false;
+  // Tests: called at every Ceres iteration (0 = the pass's start state),
+  // before abort is read.
+  std::function<void()> on_iteration;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -72,8 +80,12 @@ struct BundleAdjustmentResult {
   std::vector<bool> observation_inlier;        // per observation, after the last classification
   double initial_cost = 0;  // 0.5 * sum of squared whitened errors (no robust loss)
   double final_cost = 0;    // same measure, inliers only
-  bool aborted = false;
-  int iterations = 0;  // Ceres iterations over all passes
+  bool aborted = false;  // abort stopped a pass early or kept one from starting
+  int iterations = 0;    // Ceres iterations over all passes
+  // Accepted Ceres steps whose state is in the result (an aborted pass's
+  // steps only with keep_progress_on_abort): 0 after an abort means the
+  // BA's work was discarded.
+  int applied_steps = 0;
 };
 
 // Throws stillslam::Error when an observation indexes outside the vectors.

@@ -16,6 +16,9 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   keys.number("baFunctionTolerance", ba.function_tolerance, "BundleAdjustmentOptions.function_tolerance", {0, 1});
   keys.number("baMaxSeconds", ba.max_seconds_per_pass, "BundleAdjustmentOptions.max_seconds_per_pass", {0, 60});
   keys.flag("pauseAbortsBundleAdjustment", options.pause_aborts_bundle_adjustment);
+  keys.flag("baKeepInterrupted", ba.keep_progress_on_abort);
+  keys.integer("baIterationsBeforeInterrupt", options.iterations_before_interrupt,
+               "LocalMapperOptions.iterations_before_interrupt", {0, 100});
   // Window budget (0: no limit).
   LocalWindowOptions& window = options.window;
   keys.integer("windowKeyframes", window.max_keyframes, "LocalWindowOptions.max_keyframes", {0, 1000});

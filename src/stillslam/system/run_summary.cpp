@@ -68,8 +68,11 @@ LocalBundleAdjustmentSummary summarize_local_bundle_adjustment(const LocalMapper
   s.aborted = stats.bundle_adjustments_aborted;
   s.aborted_by_tracking = stats.bundle_adjustments_aborted_by_tracking;
   s.aborted_by_pause = stats.bundle_adjustments_aborted_by_pause;
+  s.cut_short = stats.bundle_adjustments_cut_short;
+  s.discarded = stats.bundle_adjustments_discarded;
   s.skipped = stats.bundle_adjustments_skipped;
   s.aborted_share = s.runs ? static_cast<double>(s.aborted) / s.runs : 0;
+  s.discarded_share = s.runs ? static_cast<double>(s.discarded) / s.runs : 0;
   std::vector<double> ms, cpu, kf, fixed, points, obs, it;
   for (const LocalBundleAdjustmentRecord& r : stats.bundle_adjustment_runs) {
     ms.push_back(r.ms);
@@ -97,6 +100,9 @@ nlohmann::json to_json(const LocalBundleAdjustmentSummary& s) {
           {"aborted", s.aborted},
           {"aborted_by_tracking", s.aborted_by_tracking},
           {"aborted_by_pause", s.aborted_by_pause},
+          {"cut_short", s.cut_short},
+          {"discarded", s.discarded},
+          {"discarded_share", s.discarded_share},
           {"skipped", s.skipped},
           {"aborted_share", s.aborted_share},
           {"ms", to_json(s.ms)},
@@ -194,6 +200,7 @@ nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames, double sec
                     {"ms", r.ms},
                     {"cpu_ms", r.cpu_ms},
                     {"aborted", r.aborted},
+                    {"cut_short", r.cut_short},
                     {"abort_cause", to_string(r.abort_cause)}});
   }
   return {{"keyframes", s.keyframes},

@@ -39,7 +39,10 @@ double sequence_seconds(const std::vector<FrameStats>& frames);
 struct LocalBundleAdjustmentSummary {
   int runs = 0, aborted = 0, skipped = 0;
   int aborted_by_tracking = 0, aborted_by_pause = 0;
-  double aborted_share = 0;  // aborted / runs
+  // Aborted ones split: progress applied (cut short) or none kept (discarded).
+  int cut_short = 0, discarded = 0;
+  double aborted_share = 0;    // aborted / runs
+  double discarded_share = 0;  // discarded / runs
   TimingSummary ms, cpu_ms, keyframes, fixed_keyframes, points, observations, iterations;
   double mapping_cpu_ms_per_frame = 0;
   double keyframes_per_second = 0;  // 0 when seconds is 0
