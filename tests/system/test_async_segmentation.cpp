@@ -41,6 +41,7 @@ RunResult run_async(const test::SimSequence& seq) {
   settings.segmentation.modelled_latency = 2;
   settings.segmentation.keyframe_mask_age = 2;
   settings.segmentation.max_mask_age = 8;
+  settings.segmentation.fresh_mask_cull = true;  // its path repeats bit for bit too
   SystemOptions options;
   options.deterministic = true;
   options.segmenter_factory = [] { return std::make_unique<CornerPerson>(); };
@@ -65,7 +66,9 @@ TEST(AsyncSegmentation, StatsFieldsPerFrameAndInStatsJson) {
     deferred += f.keyframe_deferred;
     keyframes += f.keyframe;
     // The map's first keyframe included.
-    if (f.keyframe) EXPECT_LE(f.build.mask_age, 2) << "keyframe from an old mask, frame " << f.index;
+    if (f.keyframe) {
+      EXPECT_LE(f.build.mask_age, 2) << "keyframe from an old mask, frame " << f.index;
+    }
     EXPECT_EQ(f.build.segmentation_skips, 0u);  // deterministic: nothing is skipped
   }
   EXPECT_EQ(r.frames[0].build.mask_age, 0);

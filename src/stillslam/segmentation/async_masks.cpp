@@ -5,6 +5,7 @@
 #include "stillslam/core/option_check.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
+#include "stillslam/segmentation/mask_grow.h"
 
 namespace stillslam {
 
@@ -77,13 +78,9 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
   if (age == 0) return fresh_->dynamic_mask;
   const PropagatedMasks moved = propagator_->propagate(frame_index, gray, depth, predicted_pose(frame_index));
   last_propagated_ = frame_index;
-  cv::Mat1b out;
-  if (dilation_px_ > 0 && cv::countNonZero(moved.union_mask) > 0) {
-    cv::dilate(moved.union_mask, out,
-               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * dilation_px_ + 1, 2 * dilation_px_ + 1)));
-  } else {
-    out = moved.union_mask.clone();
-  }
+  // A disc like the fresh masks' dilation, computed only around the mask
+  // (grow_mask), not over the whole frame.
+  cv::Mat1b out = grow_mask(moved.union_mask, dilation_px_);
   // Instances the segmenter lost (MaskHold) are held as they were, grown.
   if (!fresh_->held_mask.empty()) {
     SegmentationResult held;

@@ -53,7 +53,7 @@ struct SegmentationOptions {
   // Async: Segmentation.freshMaskCull, when the own mask of a segmented frame
   // arrives (it was built with a carried one), the map points that frame saw
   // on a person are culled (tracking/fresh_mask_check.h).
-  bool fresh_mask_cull = true;
+  bool fresh_mask_cull = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
