@@ -75,11 +75,36 @@ TEST(AsyncMasks, AFrameTooOldWithNoRequestInFlightSubmitsItsOwn) {
   auto stage = make_stage(gate, false);
   AsyncMasks masks(*stage, options(100, 0, 2));
   EXPECT_EQ(masks.mask_for(image(), 0).age, 0);
+  EXPECT_EQ(masks.mask_for(image(), 1).age, 1);
   EXPECT_EQ(masks.mask_for(image(), 2).age, 2);
   const FrameMask m = masks.mask_for(image(), 3);
   EXPECT_EQ(m.age, 0);
   EXPECT_EQ(m.scheduled, ScheduleReason::Waiting);
   EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 3}));
+}
+
+TEST(AsyncMasks, AgesCountProcessedFramesSoDroppedFramesDoNotMakeFramesWait) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMasks masks(*stage, options(2, 1, 3));
+  // --realtime dropped 4 of every 5 input frames: only every fifth is processed.
+  std::vector<int> ages, input_ages, sources;
+  std::vector<bool> waited;
+  for (std::size_t f = 0; f <= 45; f += 5) {
+    const FrameMask m = masks.mask_for(image(), f);
+    ages.push_back(m.age);
+    input_ages.push_back(m.input_age);
+    sources.push_back(test::square_x(m.mask));
+    waited.push_back(m.waited);
+  }
+  // Requests every 2 processed frames (0, 10, 20, ...), usable one processed
+  // frame later: ages 0..2, never above maxMaskAge 3, so only the first frame
+  // waits. Counted in input frames (5..10) every frame would have waited.
+  EXPECT_EQ(ages, (std::vector<int>{0, 1, 2, 1, 2, 1, 2, 1, 2, 1}));
+  EXPECT_EQ(input_ages, (std::vector<int>{0, 5, 10, 5, 10, 5, 10, 5, 10, 5}));
+  EXPECT_EQ(sources, (std::vector<int>{0, 0, 0, 10, 10, 20, 20, 30, 30, 40}));
+  EXPECT_EQ(waited, (std::vector<bool>{true, false, false, false, false, false, false, false, false, false}));
+  EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 10, 20, 30, 40}));
 }
 
 TEST(AsyncMasks, OrdinaryFramesDoNotWaitForABusySegmenter) {
@@ -126,9 +151,10 @@ TEST(AsyncMasks, CarriedMasksGoThroughThePropagatorWhenGivenTheGreyImage) {
   EXPECT_EQ(cv::countNonZero(fresh.mask), 100);  // the fresh 10x10 square as segmented
   masks.on_tracked(0, Eigen::Isometry3d::Identity());
   const FrameMask carried = masks.mask_for(image(), 2, gray);
-  EXPECT_EQ(carried.age, 2);
+  EXPECT_EQ(carried.age, 1);        // processed frames: frame 1 was never given
+  EXPECT_EQ(carried.input_age, 2);  // the propagator's margin grows with input frames
   EXPECT_EQ(cv::countNonZero(carried.mask(cv::Rect(0, 0, 10, 10))), 100);
-  // Grown by the margin at age 2 (3 + 2 px): the square reaches about 14 px right and down.
+  // Grown by the margin at input age 2 (3 + 2 px): the square reaches about 14 px right and down.
   EXPECT_GT(carried.mask(0, 13), 0);
   EXPECT_EQ(carried.mask(0, 16), 0);
   EXPECT_GT(carried.mask(13, 0), 0);

@@ -11,6 +11,7 @@
 #include "stillslam/features/brief_descriptor.h"
 #include "stillslam/features/fast_cells.h"
 #include "stillslam/features/keypoint_distribution.h"
+#include "stillslam/features/level_masks.h"
 #include "stillslam/features/orientation.h"
 #include "stillslam/features/pyramid_coordinates.h"
 
@@ -132,18 +133,16 @@ OrbFeatures OrbExtractor::extract(const cv::Mat& gray, const cv::Mat1b& exclude,
   }
   std::vector<cv::Mat> levels = build_image_pyramid(gray, pyramid_);
   // The mask at each level's size: a corner is dropped when its level pixel
-  // shows any excluded full-resolution pixel (INTER_AREA averages, > 0 keeps them).
+  // shows any excluded full-resolution pixel (level_masks.h).
   std::vector<cv::Mat1b> excluded(levels.size());
   const int excluded_pixels = exclude.empty() ? 0 : cv::countNonZero(exclude);
   // The masked corners reported get the share of each level's budget that the mask covers.
   const double masked_share =
       masked_out ? static_cast<double>(excluded_pixels) / static_cast<double>(gray.total()) : 0.0;
   if (excluded_pixels > 0) {
-    excluded[0] = exclude;
-    for (std::size_t l = 1; l < levels.size(); ++l) {
-      if (levels[l].empty()) continue;
-      cv::resize(exclude, excluded[l], levels[l].size(), 0, 0, cv::INTER_AREA);
-    }
+    std::vector<cv::Size> sizes;
+    for (const cv::Mat& level : levels) sizes.push_back(level.empty() ? cv::Size() : level.size());
+    excluded = level_masks(exclude, sizes);
   }
 
   std::vector<LevelResult> results(static_cast<std::size_t>(pyramid_.n_levels));

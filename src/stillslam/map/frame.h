@@ -54,7 +54,7 @@ class Frame {
   const cv::Mat1b& dynamic_mask() const { return dynamic_mask_; }
   float masked_fraction() const { return masked_fraction_; }
   void set_dynamic_mask(cv::Mat1b mask);
-  // Input frames between the segmented frame the mask comes from and this
+  // Processed frames between the segmented frame the mask comes from and this
   // one (0: this frame's own segmentation; -1: no segmentation).
   int mask_age() const { return mask_age_; }
   void set_mask_age(int age) { mask_age_ = age; }

@@ -4,6 +4,8 @@
 
 #include "stillslam/core/option_check.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
+#include "stillslam/segmentation/mask_grow.h"
 
 namespace stillslam {
 
@@ -76,13 +78,9 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
   if (age == 0) return fresh_->dynamic_mask;
   const PropagatedMasks moved = propagator_->propagate(frame_index, gray, depth, predicted_pose(frame_index));
   last_propagated_ = frame_index;
-  cv::Mat1b out;
-  if (dilation_px_ > 0 && cv::countNonZero(moved.union_mask) > 0) {
-    cv::dilate(moved.union_mask, out,
-               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * dilation_px_ + 1, 2 * dilation_px_ + 1)));
-  } else {
-    out = moved.union_mask.clone();
-  }
+  // A disc like the fresh masks' dilation, computed only around the mask
+  // (grow_mask), not over the whole frame.
+  cv::Mat1b out = grow_mask(moved.union_mask, dilation_px_);
   // Instances the segmenter lost (MaskHold) are held as they were, grown.
   if (!fresh_->held_mask.empty()) {
     SegmentationResult held;
@@ -95,6 +93,7 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
 bool AsyncMasks::stage_busy() const { return stage_.threaded() ? stage_.busy() : !pending_.empty(); }
 
 void AsyncMasks::submit(const cv::Mat& bgr, std::size_t frame_index) {
+  ordinals_[frame_index] = processed_ - 1;  // mask_for() counted this frame already
   if (propagator_ && !pending_gray_.empty()) {
     submitted_[frame_index] = Submitted{pending_gray_, pending_depth_, std::nullopt};
   }
@@ -102,14 +101,19 @@ void AsyncMasks::submit(const cv::Mat& bgr, std::size_t frame_index) {
   if (!stage_.threaded()) pending_.push_back(stage_.latest());
 }
 
-void AsyncMasks::collect(std::size_t frame_index) {
+std::size_t AsyncMasks::ordinal_of(std::size_t frame_index) const {
+  const auto it = ordinals_.find(frame_index);
+  return it != ordinals_.end() ? it->second : processed_ - 1;  // every result is of a submitted frame
+}
+
+void AsyncMasks::collect(std::size_t ordinal) {
   if (stage_.threaded()) {
     std::shared_ptr<const SegmentationResult> r = stage_.latest();
     if (r && (!fresh_ || r->frame_index > fresh_->frame_index)) fresh_ = std::move(r);
     return;
   }
   const auto latency = static_cast<std::size_t>(options_.modelled_latency);
-  while (!pending_.empty() && pending_.front()->frame_index + latency <= frame_index) {
+  while (!pending_.empty() && ordinal_of(pending_.front()->frame_index) + latency <= ordinal) {
     fresh_ = pending_.front();
     pending_.pop_front();
   }
@@ -142,22 +146,23 @@ FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, cons
   FrameMask out;
   pending_gray_ = gray;
   pending_depth_ = depth;
-  collect(frame_index);
-  out.scheduled = scheduler_.decide(frame_index, stage_busy());
+  const std::size_t ordinal = processed_++;
+  collect(ordinal);
+  out.scheduled = scheduler_.decide(ordinal, stage_busy());
   if (out.scheduled != ScheduleReason::None) submit(bgr, frame_index);
-  collect(frame_index);  // deterministic with no latency: this frame's own result
+  collect(ordinal);  // deterministic with no latency: this frame's own result
 
   const auto max_age = static_cast<std::size_t>(options_.max_mask_age);
-  if (!fresh_ || frame_index - fresh_->frame_index > max_age) {
+  if (!fresh_ || ordinal - ordinal_of(fresh_->frame_index) > max_age) {
     Stopwatch wait;
     // The request in flight if its mask would be young enough, else this frame's own.
     const std::optional<std::size_t> last = stage_.last_submitted();
     const bool in_flight = last && (!fresh_ || *last > fresh_->frame_index);
     std::size_t target = frame_index;
-    if (in_flight && frame_index - *last <= max_age) {
+    if (in_flight && ordinal - ordinal_of(*last) <= max_age) {
       target = *last;
     } else {
-      scheduler_.record_request(frame_index);
+      scheduler_.record_request(ordinal);
       out.scheduled = ScheduleReason::Waiting;
       submit(bgr, frame_index);
     }
@@ -166,14 +171,19 @@ FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, cons
     out.wait_ms = wait.elapsed_ms();
   }
   out.source = fresh_;
-  out.age = static_cast<int>(frame_index - fresh_->frame_index);
+  out.age = static_cast<int>(ordinal - ordinal_of(fresh_->frame_index));
+  out.input_age = static_cast<int>(frame_index - fresh_->frame_index);
+  ThreadCpuStopwatch carrying;
   if (propagator_ && !gray.empty()) {
-    out.mask = propagated(frame_index, pending_gray_, pending_depth_, out.age);
+    out.mask = propagated(frame_index, pending_gray_, pending_depth_, out.input_age);
     // What a later fresh result could start from is kept; older frames are not needed.
     submitted_.erase(submitted_.begin(), submitted_.lower_bound(fresh_->frame_index));
   } else {
-    out.mask = carried(*fresh_, out.age);
+    // People move with time: a mask grows by input frames (dropped ones too).
+    out.mask = carried(*fresh_, out.input_age);
   }
+  out.propagation_cpu_ms = carrying.elapsed_ms();
+  ordinals_.erase(ordinals_.begin(), ordinals_.lower_bound(fresh_->frame_index));
   return out;
 }
 

@@ -7,7 +7,8 @@
 //      finished result; deterministic, the result of frame k from frame
 //      k + modelled_latency on (timing-independent);
 //   3. the mask is the fresh result's if it is of this frame (age 0), else
-//      that result carried to this frame (age = frames since it): by the
+//      that result carried to this frame (age = processed frames since it,
+//      so frames --realtime dropped do not age a mask): by the
 //      MaskPropagator (mask_propagation.h: camera motion with depth, then
 //      the instances' own optical flow) when there is one and the frame's
 //      grey image is given, else grown grow_px_per_frame per frame of age;
@@ -41,11 +42,13 @@ struct AsyncMaskOptions {
 
 struct FrameMask {
   cv::Mat1b mask;  // frame size, 255: dynamic
-  int age = 0;     // input frames since the segmented frame
+  int age = 0;        // processed frames (mask_for calls) since the segmented frame
+  int input_age = 0;  // input frames since it (differs when frames were dropped)
   std::shared_ptr<const SegmentationResult> source;  // the segmentation it comes from
   ScheduleReason scheduled = ScheduleReason::None;  // this frame went to the stage, why
   bool waited = false;   // this frame waited for a fresh mask
   double wait_ms = 0;
+  double propagation_cpu_ms = 0;  // this thread's CPU time carrying the mask (propagator or growing)
 };
 
 class AsyncMasks {
@@ -72,14 +75,19 @@ class AsyncMasks {
   // candidate deferred for an old mask, weak tracking).
   void request_urgent() { scheduler_.request_urgent(); }
 
+  // The newest result usable at the last mask_for() call (null before the first).
+  const std::shared_ptr<const SegmentationResult>& fresh() const { return fresh_; }
+
   std::size_t skipped() const { return stage_.skipped(); }
   std::size_t submitted() const { return stage_.submitted(); }
 
  private:
   bool stage_busy() const;
   void submit(const cv::Mat& bgr, std::size_t frame_index);
-  // Moves the results usable at `frame_index` into fresh_.
-  void collect(std::size_t frame_index);
+  // Moves the results usable at the processed frame `ordinal` into fresh_.
+  void collect(std::size_t ordinal);
+  // The processed-frame ordinal of a submitted frame.
+  std::size_t ordinal_of(std::size_t frame_index) const;
   // Waits (threaded) or takes at once (deterministic) the result of `frame_index`.
   void wait_for(std::size_t frame_index);
   cv::Mat1b carried(const SegmentationResult& result, int age) const;
@@ -92,6 +100,10 @@ class AsyncMasks {
   std::shared_ptr<const SegmentationResult> fresh_;
   // Deterministic: results segmented but not usable yet (modelled latency).
   std::deque<std::shared_ptr<const SegmentationResult>> pending_;
+  // Ages count processed frames: each mask_for() call is one; the ordinal of
+  // each submitted frame is kept until its result is superseded.
+  std::size_t processed_ = 0;
+  std::map<std::size_t, std::size_t> ordinals_;  // frame index -> ordinal
 
   // Propagation: what it needs of each submitted frame until its result is
   // used or superseded.

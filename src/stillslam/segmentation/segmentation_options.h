@@ -35,10 +35,10 @@ struct SegmentationOptions {
   bool agnostic_nms = false;
   // Segmentation.mode: sync or async.
   SegmentationMode mode = SegmentationMode::Sync;
-  // Async: Segmentation.interval, a frame is segmented at least every this many frames.
+  // Async: Segmentation.interval, a frame is segmented at least every this many processed frames.
   int interval = 3;
   // Async: Segmentation.maxMaskAge, a frame whose newest mask is older (in
-  // input frames) waits for a fresh one.
+  // processed frames: frames --realtime dropped do not count) waits for a fresh one.
   int max_mask_age = 15;
   // Async: Segmentation.keyframeMaskAge, tracking makes no keyframe from a
   // frame whose mask is older; it asks for the next segmentation slot.
@@ -50,6 +50,10 @@ struct SegmentationOptions {
   // Async: Segmentation.urgentInliers, a frame tracked with fewer map-point
   // inliers asks for the next segmentation slot. 0: never.
   int urgent_inliers = 50;
+  // Async: Segmentation.freshMaskCull, when the own mask of a segmented frame
+  // arrives (it was built with a carried one), the map points that frame saw
+  // on a person are culled (tracking/fresh_mask_check.h).
+  bool fresh_mask_cull = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

@@ -19,6 +19,7 @@ struct FrameStats {
   int inliers = 0;
   bool keyframe = false;
   bool keyframe_deferred = false;  // due, but the mask was older than Segmentation.keyframeMaskAge
+  int fresh_mask_culled = 0;  // map points culled when an earlier frame's own mask arrived (fresh_mask_check.h)
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
   double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)
   double total_ms = 0;     // frame builder + tracker (+ synchronous mapping)

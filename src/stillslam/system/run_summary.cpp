@@ -21,7 +21,7 @@ TimingSummary summarize_times(std::vector<double> v) {
 RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   RunSummary s;
   s.frames = frames.size();
-  std::vector<double> total, tracking, extraction, wait, total_cpu, tracking_cpu, extraction_cpu;
+  std::vector<double> total, tracking, extraction, wait, total_cpu, tracking_cpu, extraction_cpu, propagation_cpu;
   double before = 0, after = 0, inliers = 0;
   for (const FrameStats& f : frames) {
     s.tracked += f.has_pose ? 1 : 0;
@@ -34,6 +34,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
     total_cpu.push_back(f.total_cpu_ms);
     tracking_cpu.push_back(f.tracking_cpu_ms);
     extraction_cpu.push_back(f.build.extraction_cpu_ms);
+    propagation_cpu.push_back(f.build.propagation_cpu_ms);
     before += f.build.keypoints_before;
     after += f.build.keypoints_after;
     inliers += f.inliers;
@@ -45,6 +46,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   s.total_cpu_ms = summarize_times(total_cpu);
   s.tracking_cpu_ms = summarize_times(tracking_cpu);
   s.extraction_cpu_ms = summarize_times(extraction_cpu);
+  s.propagation_cpu_ms = summarize_times(propagation_cpu);
   s.extraction_share = s.total_ms.mean > 0 ? s.extraction_ms.mean / s.total_ms.mean : 0;
   if (!frames.empty()) {
     const double n = static_cast<double>(frames.size());
@@ -123,6 +125,7 @@ nlohmann::json to_json(const FrameStats& f) {
           {"map_id", f.map_id},
           {"keyframe", f.keyframe},
           {"keyframe_deferred", f.keyframe_deferred},
+          {"fresh_mask_culled", f.fresh_mask_culled},
           {"mask_age", f.build.mask_age},
           {"mask_fresh", f.build.mask_age == 0},
           {"mask_waited", f.build.mask_waited},
@@ -156,6 +159,7 @@ nlohmann::json to_json(const FrameStats& f) {
             {"mapping_inline", f.mapping_ms},
             {"total", f.total_ms},
             {"extraction_cpu", f.build.extraction_cpu_ms},
+            {"propagation_cpu", f.build.propagation_cpu_ms},
             {"tracking_cpu", f.tracking_cpu_ms},
             {"total_cpu", f.total_cpu_ms},
             {"publish", f.publish_ms},
@@ -184,7 +188,8 @@ nlohmann::json to_json(const RunSummary& s) {
             {"segmentation_wait", to_json(s.segmentation_wait_ms)},
             {"total_cpu", to_json(s.total_cpu_ms)},
             {"tracking_cpu", to_json(s.tracking_cpu_ms)},
-            {"extraction_cpu", to_json(s.extraction_cpu_ms)}}},
+            {"extraction_cpu", to_json(s.extraction_cpu_ms)},
+            {"propagation_cpu", to_json(s.propagation_cpu_ms)}}},
           {"extraction_share", s.extraction_share}};
 }
 

@@ -114,6 +114,7 @@ void System::build_pipeline(const Settings& settings) {
       async_masks_ = std::make_unique<AsyncMasks>(*segmentation_stage_, AsyncMaskOptions::from(settings.segmentation),
                                                   std::move(propagator), settings.segmentation.mask_dilation);
       urgent_inliers_ = settings.segmentation.urgent_inliers;
+      if (settings.segmentation.fresh_mask_cull) fresh_mask_check_ = std::make_unique<FreshMaskCheck>();
     } else {
       segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
                                                            settings.segmentation.mask_dilation, hold);
@@ -277,6 +278,7 @@ void System::start_new_map() {
   finished_keyframes_.take_all();
   if (merge_detector_) merge_detector_->reset();
   tracker_->start_new_map(map);
+  if (fresh_mask_check_) fresh_mask_check_->clear();
   lost_frames_ = 0;
   ++new_maps_started_;
 }
@@ -338,6 +340,16 @@ FrameStats System::process(const SensorFrame& input) {
   stats.timestamp = input.timestamp;
   FrameDynamics dynamics;
   Frame frame = builder_->build(input, next_frame_id_++, &stats.build, &dynamics);
+  if (fresh_mask_check_ && async_masks_->fresh()) {
+    // An earlier frame's own mask may have come: what that frame saw on people goes.
+    const SegmentationResult& fresh = *async_masks_->fresh();
+    if (fresh_mask_check_->remembers(fresh.frame_index)) {
+      std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+      stats.fresh_mask_culled = fresh_mask_check_->apply(fresh.frame_index, fresh.instances);
+    } else {
+      fresh_mask_check_->apply(fresh.frame_index, {});
+    }
+  }
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
   const TrackingResult result = tracker_->track(frame);
@@ -371,6 +383,12 @@ FrameStats System::process(const SensorFrame& input) {
       }
     }
     async_masks_->on_tracked(input.index, pose, std::move(sparse_depth));
+    // Segmented but built with a carried mask: checked when its own mask comes.
+    if (fresh_mask_check_ && pose && stats.build.segmentation_request != ScheduleReason::None &&
+        stats.build.mask_age > 0) {
+      std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+      fresh_mask_check_->remember(input.index, frame);
+    }
   }
   stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();

@@ -48,6 +48,7 @@
 #include "stillslam/system/frame_stats.h"
 #include "stillslam/system/trajectory_refinement.h"
 #include "stillslam/tracking/frame_builder.h"
+#include "stillslam/tracking/fresh_mask_check.h"
 #include "stillslam/tracking/motion_stage.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker.h"
@@ -198,6 +199,7 @@ class System {
   // Segmentation.mode async: the stage and what the frame builder reads from it.
   std::unique_ptr<SegmentationStage> segmentation_stage_;
   std::unique_ptr<AsyncMasks> async_masks_;
+  std::unique_ptr<FreshMaskCheck> fresh_mask_check_;  // Segmentation.freshMaskCull
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;

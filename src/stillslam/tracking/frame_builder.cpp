@@ -88,6 +88,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     // Waits only when the newest mask is too old (async_masks.h).
     const FrameMask m = async_->mask_for(color, input.index, input.gray, input.depth);
     st.segmentation_wait_ms = m.wait_ms;
+    st.propagation_cpu_ms = m.propagation_cpu_ms;
     st.segmentation_ms = m.age == 0 ? m.source->time_ms : 0;
     st.segmentation_cpu_ms = m.age == 0 ? m.source->cpu_ms : 0;
     st.detections = static_cast<int>(m.source->detections.size());

@@ -38,9 +38,10 @@ struct FrameBuildStats {
   double segmentation_ms = 0;       // segmenter time on its own thread
   double segmentation_cpu_ms = 0;   // and its CPU time there (for this frame's own mask)
   double segmentation_wait_ms = 0;  // time this thread waited for the mask
+  double propagation_cpu_ms = 0;    // async: CPU time of this thread carrying the last mask to this frame
   double association_ms = 0;        // stereo matching / depth lookup
   double total_ms = 0;
-  // Input frames since the segmented frame the mask comes from (0: fresh,
+  // Processed frames since the segmented frame the mask comes from (0: fresh,
   // this frame's own; -1: no segmentation).
   int mask_age = -1;
   bool mask_waited = false;  // extraction waited for the mask (sync: always; async: too old)

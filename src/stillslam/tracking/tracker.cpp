@@ -135,8 +135,11 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
                     " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")";
     return Start::Waiting;
   }
+  // The first keyframe's points enter the map like any keyframe's: not from a stale mask.
+  const bool stale_mask =
+      options_.max_keyframe_mask_age >= 0 && frame.mask_age() > options_.max_keyframe_mask_age;
   // Without segmentation nothing is known to move; after a long wait, take what comes.
-  if (frame.dynamic_mask().empty() || start_frames_rejected_ >= options_.init_wait_frames) {
+  if (!stale_mask && (frame.dynamic_mask().empty() || start_frames_rejected_ >= options_.init_wait_frames)) {
     initialize(frame);
     return Start::FromThisFrame;
   }
@@ -159,6 +162,12 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
     result.reason = check.reason;
   } else {
     result.reason = "checking the first keyframe against the next frames";
+  }
+  if (stale_mask) {
+    start_candidate_.reset();
+    result.keyframe_deferred = true;  // asks for the next segmentation slot
+    result.reason = "waiting for a fresher mask to start the map (mask age " + std::to_string(frame.mask_age()) + ")";
+    return Start::Waiting;
   }
   start_candidate_ = frame;
   start_keep_.assign(frame.size(), true);

@@ -49,7 +49,7 @@ struct TrackerOptions {
   // no map points; never initializes a map of its own.
   bool localization_only = false;
   // No keyframe from a frame whose dynamic mask is older than this many
-  // input frames (Frame::mask_age; set by System from
+  // processed frames (Frame::mask_age; set by System from
   // Segmentation.keyframeMaskAge in async mode); the keyframe is deferred to
   // a later frame. -1: any age.
   int max_keyframe_mask_age = -1;
