@@ -190,22 +190,32 @@ TEST(LocalMapper, TrackingInterruptIsCountedAsTheAbortCause) {
   mapper.stop();
 }
 
+// Five keyframes of the synthetic scene with exact points; the newest one's
+// pose is moved 3 cm off, so a BA step shows in its error.
+struct DisplacedKeyframeMap {
+  test::SyntheticScene scene;
+  test::MapBuilder builder{scene};
+  std::vector<KeyFramePtr> kfs;
+  Eigen::Isometry3d truth;
+  double start_error = 0;
+  DisplacedKeyframeMap() {
+    for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+    truth = kfs[4]->T_cam_world();
+    Eigen::Isometry3d start = truth;
+    start.translation() += Eigen::Vector3d(0.03, -0.01, 0.02);
+    kfs[4]->set_pose(start);
+    start_error = (start.translation() - truth.translation()).norm();
+  }
+  double error() const { return (kfs[4]->T_cam_world().translation() - truth.translation()).norm(); }
+};
+
 // Tracking interrupts the BA after its first Ceres step (the new keyframe's
 // pose was moved 3 cm off). By default that step is applied to the map and
 // the BA counts as cut short; with keep_progress_on_abort false the keyframe
 // keeps its start pose and the BA counts as discarded.
 TEST(LocalMapper, InterruptedBundleAdjustmentAppliesItsProgress) {
   for (const bool keep : {true, false}) {
-    test::SyntheticScene scene;
-    test::MapBuilder builder(scene);
-    std::vector<KeyFramePtr> kfs;
-    for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
-    const Eigen::Isometry3d truth = kfs[4]->T_cam_world();
-    Eigen::Isometry3d start = truth;
-    start.translation() += Eigen::Vector3d(0.03, -0.01, 0.02);
-    kfs[4]->set_pose(start);
-    const double start_error = (start.translation() - truth.translation()).norm();
-
+    DisplacedKeyframeMap m;
     Recorded rec;
     LocalMapperOptions o = options_recording(rec, true);
     o.enable_bundle_adjustment = true;
@@ -216,9 +226,9 @@ TEST(LocalMapper, InterruptedBundleAdjustmentAppliesItsProgress) {
     o.bundle_adjustment.on_iteration = [&] {
       if (++calls == 2) mapper_ptr->interrupt_bundle_adjustment();  // after iteration 1
     };
-    LocalMapper mapper(builder.map(), o);
+    LocalMapper mapper(m.builder.map(), o);
     mapper_ptr = &mapper;
-    mapper.insert_keyframe(kfs[4]);
+    mapper.insert_keyframe(m.kfs[4]);
     mapper.flush();
     const LocalMapperStats stats = mapper.stats();
     mapper.stop();
@@ -230,11 +240,11 @@ TEST(LocalMapper, InterruptedBundleAdjustmentAppliesItsProgress) {
     ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u);
     EXPECT_EQ(stats.bundle_adjustment_runs[0].cut_short, keep);
     EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, 1) << keep;
-    const double error = (kfs[4]->T_cam_world().translation() - truth.translation()).norm();
+    const double error = m.error();
     if (keep) {
-      EXPECT_LT(error, 0.2 * start_error);  // one Gauss-Newton-like step from exact points
+      EXPECT_LT(error, 0.2 * m.start_error);  // one Gauss-Newton-like step from exact points
     } else {
-      EXPECT_NEAR(error, start_error, 1e-9);
+      EXPECT_NEAR(error, m.start_error, 1e-9);
     }
   }
 }
@@ -244,15 +254,7 @@ TEST(LocalMapper, InterruptedBundleAdjustmentAppliesItsProgress) {
 // 0 it stops before any and nothing is kept (discarded).
 TEST(LocalMapper, InterruptTakesEffectAfterTheFirstIteration) {
   for (const int gate : {1, 0}) {
-    test::SyntheticScene scene;
-    test::MapBuilder builder(scene);
-    std::vector<KeyFramePtr> kfs;
-    for (int k = 0; k < 5; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
-    const Eigen::Isometry3d truth = kfs[4]->T_cam_world();
-    Eigen::Isometry3d start = truth;
-    start.translation() += Eigen::Vector3d(0.03, -0.01, 0.02);
-    kfs[4]->set_pose(start);
-    const double start_error = (start.translation() - truth.translation()).norm();
+    DisplacedKeyframeMap m;
     Recorded rec;
     LocalMapperOptions o = options_recording(rec, true);
     o.enable_bundle_adjustment = true;
@@ -260,9 +262,9 @@ TEST(LocalMapper, InterruptTakesEffectAfterTheFirstIteration) {
     o.iterations_before_interrupt = gate;
     LocalMapper* mapper_ptr = nullptr;
     o.on_bundle_adjustment_start = [&] { mapper_ptr->interrupt_bundle_adjustment(); };
-    LocalMapper mapper(builder.map(), o);
+    LocalMapper mapper(m.builder.map(), o);
     mapper_ptr = &mapper;
-    mapper.insert_keyframe(kfs[4]);
+    mapper.insert_keyframe(m.kfs[4]);
     mapper.flush();
     const LocalMapperStats stats = mapper.stats();
     mapper.stop();
@@ -271,11 +273,11 @@ TEST(LocalMapper, InterruptTakesEffectAfterTheFirstIteration) {
     EXPECT_EQ(stats.bundle_adjustment_runs[0].iterations, gate);
     EXPECT_EQ(stats.bundle_adjustments_cut_short, gate);
     EXPECT_EQ(stats.bundle_adjustments_discarded, 1 - gate);
-    const double error = (kfs[4]->T_cam_world().translation() - truth.translation()).norm();
+    const double error = m.error();
     if (gate == 1) {
-      EXPECT_LT(error, 0.2 * start_error);
+      EXPECT_LT(error, 0.2 * m.start_error);
     } else {
-      EXPECT_NEAR(error, start_error, 1e-9);
+      EXPECT_NEAR(error, m.start_error, 1e-9);
     }
   }
 }
