@@ -51,11 +51,9 @@ struct LocalMapperOptions {
     o.function_tolerance = 1e-4;
     // An interrupted BA keeps what it reached (ORB-SLAM does too).
     o.keep_progress_on_abort = true;
-    // One 3-row block per stereo/RGB-D observation: on the real windows it is
-    // faster than the split (bench/README.md, issue #21 session 6: 13-24 %
-    // less CPU per BA on a stereo render and two RGB-D sequences; ATE 1.00x,
-    // 1.03x and 1.07x in single deterministic runs).
-    o.split_stereo = false;
+    // Stereo/RGB-D observations stay split into 2-row blocks: one 3-row block
+    // is 13-24 % cheaper per BA but lost accuracy on the held-out renders
+    // (bench/README.md, "Lead, session 6": 1.28x and 1.19x ATE).
     return o;
   }
   // Throws OptionError naming the field, its value and the valid range.
