@@ -2,6 +2,16 @@
 
 namespace stillslam {
 
+PoseObservation pose_observation(const Frame& frame, std::size_t i) {
+  PoseObservation obs;
+  obs.point_world = frame.map_point(i)->position();
+  const cv::KeyPoint& kp = frame.keypoint(i);
+  obs.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
+  obs.u_right = frame.u_right(i);
+  obs.inv_sigma2 = frame.setup().pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
+  return obs;
+}
+
 int refine_pose(Frame& frame, const PoseOptimizerOptions& options) {
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> observations;
@@ -11,13 +21,7 @@ int refine_pose(Frame& frame, const PoseOptimizerOptions& options) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
     frame.set_outlier(i, false);
-    PoseObservation obs;
-    obs.point_world = mp->position();
-    const cv::KeyPoint& kp = frame.keypoint(i);
-    obs.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    obs.u_right = frame.u_right(i);
-    obs.inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
-    observations.push_back(obs);
+    observations.push_back(pose_observation(frame, i));
     index.push_back(i);
   }
   if (observations.size() < 3) return 0;

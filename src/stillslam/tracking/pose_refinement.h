@@ -7,6 +7,10 @@
 
 namespace stillslam {
 
+// Keypoint i of the frame against its matched map point (which must be set),
+// weighted by the keypoint's pyramid level.
+PoseObservation pose_observation(const Frame& frame, std::size_t i);
+
 // Returns the number of inlier observations. The frame must have a pose.
 int refine_pose(Frame& frame, const PoseOptimizerOptions& options = {});
 

@@ -38,12 +38,7 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
-    PoseObservation obs;
-    obs.point_world = mp->position();
-    const cv::KeyPoint& kp = frame.keypoint(i);
-    obs.pixel = Eigen::Vector2d(kp.pt.x, kp.pt.y);
-    obs.u_right = frame.u_right(i);
-    obs.inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
+    const PoseObservation obs = pose_observation(frame, i);
     if (has_static_evidence(*mp, options) && !recently_rejected(*mp, options, frame.id())) {
       trusted.push_back(obs);
       trusted_index.push_back(i);
