@@ -41,11 +41,11 @@ TEST(LocalMapper, PausedWorkerLeavesKeyframesQueuedUntilResumed) {
   LocalMapper mapper(builder.map(), options_recording(rec, true));
   mapper.pause();
   mapper.insert_keyframe(kfs[4]);
-  EXPECT_EQ(mapper.queued_keyframes(), 1u);  // the paused worker does not take it
+  EXPECT_EQ(mapper.queued_keyframes(0.0), 1u);  // the paused worker does not take it
   EXPECT_EQ(mapper.stats().keyframes, 0);
   mapper.resume();
   mapper.flush();
-  EXPECT_EQ(mapper.queued_keyframes(), 0u);
+  EXPECT_EQ(mapper.queued_keyframes(0.0), 0u);
   const LocalMapperStats stats = mapper.stats();
   EXPECT_EQ(stats.keyframes, 1);
   mapper.stop();
@@ -99,6 +99,50 @@ TEST(LocalMapper, OneWaitingKeyframeKeepsTheBundleAdjustmentABacklogSkipsIt) {
     EXPECT_GE(stats.bundle_adjustment_runs[0].keyframes, 1);
     EXPECT_GT(stats.bundle_adjustment_runs[0].observations, 0);
     EXPECT_GT(stats.cpu_ms, 0);
+  }
+}
+
+// Synchronous mapping is never busy when tracking asks; the busy model makes
+// it look busy for each keyframe's modelled cost from the keyframe's
+// timestamp on, and a keyframe arriving meanwhile waits behind it.
+TEST(LocalMapper, SynchronousMapperLooksBusyForTheModelledTime) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 6; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  for (bool model : {false, true}) {
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, false);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    o.busy_model = model;
+    o.busy.keyframe_ms = 250;  // longer than the 0.1 s between the keyframes
+    LocalMapper mapper(builder.map(), o);
+    const double t4 = kfs[4]->timestamp(), t5 = kfs[5]->timestamp();
+    ASSERT_NEAR(t5 - t4, 0.1, 1e-9);
+    mapper.insert_keyframe(kfs[4]);
+    mapper.process_pending();
+    const LocalMapperStats stats = mapper.stats();
+    ASSERT_EQ(stats.bundle_adjustment_runs.size(), 1u);
+    const LocalBundleAdjustmentRecord& run = stats.bundle_adjustment_runs[0];
+    ASSERT_GT(run.observations, 0);
+    const double busy_ms = MapperBusyModel(o.busy).busy_ms(run.observations, run.iterations);
+    EXPECT_GT(busy_ms, 250.0);
+    if (!model) {
+      EXPECT_TRUE(mapper.accepts_keyframes(t4 + 0.001));
+      EXPECT_EQ(stats.modelled_busy_ms, 0.0);
+      continue;
+    }
+    EXPECT_DOUBLE_EQ(stats.modelled_busy_ms, busy_ms);
+    EXPECT_FALSE(mapper.accepts_keyframes(t4 + 0.5 * busy_ms / 1000));
+    EXPECT_TRUE(mapper.accepts_keyframes(t4 + busy_ms / 1000));
+    EXPECT_EQ(mapper.queued_keyframes(t5), 0u);
+    mapper.insert_keyframe(kfs[5]);  // arrives while kfs[4] is modelled busy
+    mapper.process_pending();
+    EXPECT_EQ(mapper.queued_keyframes(t5), 1u);
+    EXPECT_EQ(mapper.queued_keyframes(t4 + busy_ms / 1000), 0u);
+    EXPECT_FALSE(mapper.accepts_keyframes(t4 + busy_ms / 1000));
+    EXPECT_TRUE(mapper.accepts_keyframes(t4 + mapper.stats().modelled_busy_ms / 1000 + 1e-9));
   }
 }
 

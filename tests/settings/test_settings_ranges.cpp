@@ -79,6 +79,7 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.closePointsUntrackedMin", "-1", "is -1: must be in [0, 50000]"},
     {"Tracking.closePointsUntrackedMin", "1e6", "is 1000000: must be in [0, 50000]"},
     {"Tracking.newKeyframePoints", "-1", "is -1: must be in [0, 50000]"},
+    {"Tracking.interruptInliers", "-1", "is -1: must be in [0, 50000]"},
     {"Tracking.newKeyframePoints", "1e6", "is 1000000: must be in [0, 50000]"},
     {"Tracking.motionSearchRadius", "0", "is 0: must be in (0, 1000]"},
     {"Tracking.motionSearchRadius", "1e6", "is 1000000: must be in (0, 1000]"},
@@ -104,6 +105,9 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.relocMinInliers", "1e6", "is 1000000: must be in [1, 50000]"},
     // LocalMapping.*
     {"LocalMapping.baThreads", "0", "is 0: must be in [1, "},
+    {"LocalMapping.busyModelKeyframeMs", "-1", "is -1: must be in [0, 10000]"},
+    {"LocalMapping.busyModelObservationUs", "2000", "is 2000: must be in [0, 1000]"},
+    {"LocalMapping.busyModelObservationIterationUs", "-0.5", "is -0.5: must be in [0, 1000]"},
     {"LocalMapping.baThreads", "100000", "is 100000: must be in [1, "},
     {"LocalMapping.baIterations", "0", "is 0: must be in [1, 1000]"},
     {"LocalMapping.baIterations", "1e6", "is 1000000: must be in [1, 1000]"},

@@ -211,7 +211,10 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
                            "LocalMapping.baMaxSeconds: 0.5\nLocalMapping.windowKeyframes: 9\n"
                            "LocalMapping.windowFixedKeyframes: 0\nLocalMapping.windowPoints: 1500\n"
                            "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n"
-                           "LocalMapping.baKeepInterrupted: 0\nLocalMapping.baIterationsBeforeInterrupt: 3\n";
+                           "LocalMapping.baKeepInterrupted: 0\nLocalMapping.baIterationsBeforeInterrupt: 3\n"
+                           "LocalMapping.busyModel: 0\nLocalMapping.busyModelThreaded: 1\n"
+                           "LocalMapping.busyModelKeyframeMs: 15\nLocalMapping.busyModelObservationUs: 4\n"
+                           "LocalMapping.busyModelObservationIterationUs: 0.5\n";
   const Settings s = load_settings(dir.write("m.yaml", text));
   const LocalMapperOptions& m = s.local_mapping;
   EXPECT_TRUE(m.bundle_adjustment.split_stereo);
@@ -224,6 +227,11 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
   EXPECT_TRUE(m.pause_aborts_bundle_adjustment);
   EXPECT_FALSE(m.bundle_adjustment.keep_progress_on_abort);
   EXPECT_EQ(m.iterations_before_interrupt, 3);
+  EXPECT_FALSE(m.busy_model);
+  EXPECT_TRUE(m.busy_model_threaded);
+  EXPECT_DOUBLE_EQ(m.busy.keyframe_ms, 15);
+  EXPECT_DOUBLE_EQ(m.busy.observation_us, 4);
+  EXPECT_DOUBLE_EQ(m.busy.observation_iteration_us, 0.5);
   EXPECT_FALSE(m.enable_bundle_adjustment);
   EXPECT_EQ(m.bundle_adjustment.num_threads, 2);
   EXPECT_EQ(m.bundle_adjustment.iterations, 7);

@@ -1,5 +1,7 @@
 #include "stillslam/mapping/local_mapper.h"
 
+#include <algorithm>
+
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/mapping/keyframe_insertion.h"
@@ -10,6 +12,7 @@ namespace stillslam {
 LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
     : map_(&map),
       options_(std::move(options)),
+      busy_model_(options_.busy),
       worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous, [this](KeyFramePtr& kf) {
         abort_ba_ = false;
         abort_cause_ = BundleAdjustmentAbort::None;
@@ -23,6 +26,20 @@ LocalMapper::~LocalMapper() { stop(); }
 // A new keyframe does not interrupt the BA in progress: tracking asks for
 // that (interrupt_bundle_adjustment) only when it needs the keyframe at once.
 void LocalMapper::insert_keyframe(KeyFramePtr kf) { worker_.submit(std::move(kf)); }
+
+bool LocalMapper::accepts_keyframes(double now) const {
+  const bool idle = !worker_.threaded() || worker_.idle();
+  if (!idle || !uses_busy_model()) return idle;
+  std::lock_guard<std::mutex> lock(busy_mutex_);
+  return busy_model_.idle(now);
+}
+
+std::size_t LocalMapper::queued_keyframes(double now) const {
+  const std::size_t queued = worker_.queued();
+  if (!uses_busy_model()) return queued;
+  std::lock_guard<std::mutex> lock(busy_mutex_);
+  return std::max(queued, busy_model_.queued(now));
+}
 
 void LocalMapper::abort(BundleAdjustmentAbort cause) {
   BundleAdjustmentAbort none = BundleAdjustmentAbort::None;
@@ -79,6 +96,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
     fuse_with_neighbours(*kf, options_.fusion);
   }
   next_step(step.fusion);
+  int ba_observations = 0, ba_iterations = 0;  // for the busy model
   const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry();
   if (options_.enable_bundle_adjustment && !run_bundle_adjustment) delta.bundle_adjustments_skipped = 1;
   if (run_bundle_adjustment) {
@@ -132,6 +150,8 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       record.cut_short = cut_short;
       record.abort_cause = cause;
       delta.bundle_adjustment_runs.push_back(record);
+      ba_observations = window.observations;
+      ba_iterations = result.iterations;
     }
   }
   next_step(step.bundle_adjustment);
@@ -153,6 +173,11 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   if (options_.on_keyframe_processed && keyframe_alive) options_.on_keyframe_processed(kf);
   delta.total_ms = total.elapsed_ms();
   delta.cpu_ms = cpu.elapsed_ms();
+  if (uses_busy_model()) {
+    std::lock_guard<std::mutex> lock(busy_mutex_);
+    delta.modelled_busy_ms = busy_model_.busy_ms(ba_observations, ba_iterations);
+    busy_model_.add(kf->timestamp(), delta.modelled_busy_ms);
+  }
   std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_ += delta;
 }

@@ -28,9 +28,13 @@ class LocalMapper {
 
   // Called by tracking (possibly while it holds the map lock).
   void insert_keyframe(KeyFramePtr kf);
-  // Threaded: nothing queued or in progress. Synchronous: always.
-  bool accepts_keyframes() const { return !worker_.threaded() || worker_.idle(); }
-  std::size_t queued_keyframes() const { return worker_.queued(); }
+  // At input time `now` (the frame's timestamp, seconds). Threaded: nothing
+  // queued or in progress. Synchronous: always. With the busy model in use
+  // (options.busy_model; busy_model_threaded for threaded runs) the modelled
+  // mapper must be idle as well.
+  bool accepts_keyframes(double now) const;
+  // Keyframes waiting: the real queue's, or the model's when it has more.
+  std::size_t queued_keyframes(double now) const;
   // Tracking needs the queued keyframe at once: the BA in progress stops.
   void interrupt_bundle_adjustment() { abort(BundleAdjustmentAbort::Tracking); }
 
@@ -60,8 +64,12 @@ class LocalMapper {
   // Sets abort_ba_; the first cause since the keyframe started is kept.
   void abort(BundleAdjustmentAbort cause);
 
+  bool uses_busy_model() const { return options_.busy_model && (!options_.threaded || options_.busy_model_threaded); }
+
   Map* map_;  // changed only by switch_map(), while the worker is idle
   LocalMapperOptions options_;
+  mutable std::mutex busy_mutex_;
+  MapperBusyModel busy_model_;  // fed by process(), read by tracking
   std::atomic<bool> abort_ba_{false};
   std::atomic<BundleAdjustmentAbort> abort_cause_{BundleAdjustmentAbort::None};
   std::vector<MapPointPtr> recent_points_;

@@ -23,6 +23,7 @@ void LocalMapperOptions::check() const {
   keyframe_culling.check();
   bundle_adjustment.check();
   window.check();
+  busy.check();
   option_check::in_range("LocalMapperOptions.iterations_before_interrupt", iterations_before_interrupt, 0, 100);
 }
 

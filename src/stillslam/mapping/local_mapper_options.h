@@ -7,6 +7,7 @@
 #include "stillslam/map/keyframe.h"
 #include "stillslam/mapping/keyframe_culling.h"
 #include "stillslam/mapping/local_window_options.h"
+#include "stillslam/mapping/mapper_busy_model.h"
 #include "stillslam/mapping/neighbour_fusion.h"
 #include "stillslam/mapping/point_culling.h"
 #include "stillslam/mapping/point_triangulation.h"
@@ -32,6 +33,13 @@ struct LocalMapperOptions {
   // Ceres iterations (0: at once), so that it has a step to keep
   // (bundle_adjustment.keep_progress_on_abort) instead of nothing.
   int iterations_before_interrupt = 1;
+  // Keyframe admission asks a model of how long the mapper would be busy
+  // (mapping/mapper_busy_model.h) in synchronous runs, which otherwise never
+  // look busy; busy_model_threaded: in threaded runs too (on top of the real
+  // mapper's state).
+  bool busy_model = true;
+  bool busy_model_threaded = false;
+  MapperBusyModelOptions busy;
   // Wired by System (both optional). Called outside the map lock: every
   // finished keyframe (to loop closing) and the ids of culled keyframes (to
   // drop them from place recognition).
@@ -108,6 +116,7 @@ struct LocalMapperStats {
   double bundle_adjustment_ms = 0;  // total
   double total_ms = 0;              // total processing time
   double cpu_ms = 0;                // mapping thread's CPU time (Ceres threads beyond the first not counted)
+  double modelled_busy_ms = 0;      // the busy model's cost of the keyframes (0 when it is not used)
   LocalMapperCpu cpu_by_step;       // cpu_ms split by step
   std::vector<LocalBundleAdjustmentRecord> bundle_adjustment_runs;  // in order
 
@@ -126,6 +135,7 @@ struct LocalMapperStats {
     bundle_adjustment_ms += o.bundle_adjustment_ms;
     total_ms += o.total_ms;
     cpu_ms += o.cpu_ms;
+    modelled_busy_ms += o.modelled_busy_ms;
     cpu_by_step += o.cpu_by_step;
     bundle_adjustment_runs.insert(bundle_adjustment_runs.end(), o.bundle_adjustment_runs.begin(),
                                   o.bundle_adjustment_runs.end());

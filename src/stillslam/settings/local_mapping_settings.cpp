@@ -19,6 +19,14 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   keys.flag("baKeepInterrupted", ba.keep_progress_on_abort);
   keys.integer("baIterationsBeforeInterrupt", options.iterations_before_interrupt,
                "LocalMapperOptions.iterations_before_interrupt", {0, 100});
+  // Busy model of keyframe admission (mapping/mapper_busy_model.h).
+  keys.flag("busyModel", options.busy_model);
+  keys.flag("busyModelThreaded", options.busy_model_threaded);
+  MapperBusyModelOptions& busy = options.busy;
+  keys.number("busyModelKeyframeMs", busy.keyframe_ms, "MapperBusyModelOptions.keyframe_ms", {0, 10000});
+  keys.number("busyModelObservationUs", busy.observation_us, "MapperBusyModelOptions.observation_us", {0, 1000});
+  keys.number("busyModelObservationIterationUs", busy.observation_iteration_us,
+              "MapperBusyModelOptions.observation_iteration_us", {0, 1000});
   // Window budget (0: no limit).
   LocalWindowOptions& window = options.window;
   keys.integer("windowKeyframes", window.max_keyframes, "LocalWindowOptions.max_keyframes", {0, 1000});

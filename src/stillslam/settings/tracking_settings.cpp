@@ -23,6 +23,7 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("minFramesBetweenKeyframes", tracker.min_frames_between_keyframes,
                "TrackerOptions.min_frames_between_keyframes", {0, 100000});
   keys.number("keyframesPerSecond", tracker.keyframe_budget.per_second, "KeyFrameBudgetOptions.per_second", {0, 1000});
+  keys.integer("interruptInliers", tracker.interrupt_inliers, "TrackerOptions.interrupt_inliers", {0, 50000});
   keys.number("keyframeBurst", tracker.keyframe_budget.burst, "KeyFrameBudgetOptions.burst", {1, 1000});
   keys.integer("closePointsTrackedMin", tracker.close_points_tracked_min,
                "TrackerOptions.close_points_tracked_min", {0, 50000});

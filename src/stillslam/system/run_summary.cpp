@@ -219,6 +219,7 @@ nlohmann::json to_json(const LocalMapperStats& s, std::size_t frames, double sec
           {"total_ms", s.total_ms},
           {"cpu_ms_total", s.cpu_ms},
           {"cpu_ms_per_frame", ba.mapping_cpu_ms_per_frame},
+          {"modelled_busy_ms_total", s.modelled_busy_ms},
           {"cpu_ms_by_step",
            {{"registration", s.cpu_by_step.registration},
             {"triangulation", s.cpu_by_step.triangulation},

@@ -174,8 +174,8 @@ void System::build_pipeline(const Settings& settings) {
   LocalMapper* mapper = mapper_.get();
   LocalMappingLink link;
   link.insert_keyframe = [mapper](KeyFramePtr kf) { mapper->insert_keyframe(std::move(kf)); };
-  link.accepts_keyframes = [mapper] { return mapper->accepts_keyframes(); };
-  link.queued_keyframes = [mapper] { return mapper->queued_keyframes(); };
+  link.accepts_keyframes = [mapper](double now) { return mapper->accepts_keyframes(now); };
+  link.queued_keyframes = [mapper](double now) { return mapper->queued_keyframes(now); };
   link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
   if (recognizer_) {
     // Called by the tracker with the active map's lock held.

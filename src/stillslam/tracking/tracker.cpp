@@ -384,7 +384,7 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   }
   const int min_observations = num_keyframes <= 2 ? 2 : 3;
   const int reference_matches = reference_keyframe_ ? reference_keyframe_->num_tracked_points(min_observations) : 0;
-  const bool idle = link_.accepts_keyframes ? link_.accepts_keyframes() : true;
+  const bool idle = link_.accepts_keyframes ? link_.accepts_keyframes(frame.timestamp()) : true;
 
   // Close points: tracked vs. not tracked (new structure worth a keyframe).
   int tracked_close = 0, untracked_close = 0;
@@ -409,8 +409,9 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   if (!((c1a || c1b || c1c) && c2)) return false;
   const bool weak = inliers < reference_matches * 0.25;
   if (!weak && !keyframe_budget_.allows(frame.timestamp())) return false;
+  const std::size_t queued = link_.queued_keyframes ? link_.queued_keyframes(frame.timestamp()) : 0;
   const KeyFrameAdmission admission =
-      admit_keyframe(idle, weak, need_close, link_.queued_keyframes ? link_.queued_keyframes() : 0);
+      admit_keyframe(idle, weak, need_close, queued, inliers < options_.interrupt_inliers);
   if (admission.interrupt_bundle_adjustment && link_.interrupt_bundle_adjustment) {
     link_.interrupt_bundle_adjustment();
   }

@@ -21,8 +21,9 @@ namespace stillslam {
 // How tracking talks to local mapping (wired by System; all optional).
 struct LocalMappingLink {
   std::function<void(KeyFramePtr)> insert_keyframe;
-  std::function<bool()> accepts_keyframes;      // idle
-  std::function<std::size_t()> queued_keyframes;
+  // Asked with the frame's timestamp (the mapper may model its busy time on it).
+  std::function<bool(double)> accepts_keyframes;  // idle
+  std::function<std::size_t(double)> queued_keyframes;
   std::function<void()> interrupt_bundle_adjustment;
   // Relocalization while lost, called with the map lock held: on success the
   // frame holds its pose, inlier map-point matches and reference keyframe.

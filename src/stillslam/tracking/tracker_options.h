@@ -22,6 +22,8 @@ struct TrackerOptions {
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
   KeyFrameBudgetOptions keyframe_budget;  // keyframes per second of input (tracking/keyframe_budget.h)
+  // A weak frame interrupts the mapper's local BA only with fewer inliers (tracking/keyframe_admission.h).
+  int interrupt_inliers = 100;
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
   float local_map_search_th = 3.f;
   float reference_search_th = 5.f;     // wide window when the motion model fails
