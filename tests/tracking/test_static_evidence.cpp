@@ -6,6 +6,7 @@
 #include "map/synthetic_scene.h"
 #include "stillslam/core/option_check.h"
 #include "stillslam/map/map.h"
+#include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/static_evidence.h"
 #include "stillslam/tracking/tracker.h"
 
@@ -259,6 +260,107 @@ TEST(StaticEvidence, RecentlyRejected) {
   EXPECT_FALSE(recently_rejected(mp, options, 40));  // this frame's own rejection is not known yet
   options.quiet_frames = 0;
   EXPECT_FALSE(recently_rejected(mp, options, 45));
+}
+
+
+// A cluster that earned evidence while still (observed 30 frames apart, like
+// the background) and has moved 4 cm towards the camera; a sixth of its
+// keypoints are matched (about 150, the share of the walking_xyz capture).
+// The motion model predicts the true pose.
+
+
+constexpr int kClusterEvery = 2;
+struct MovedClusterFrame {
+  Frame frame;
+  std::vector<bool> on_cluster;
+  Eigen::Isometry3d T = test::pose_at(0.02);
+  Map map;
+  MovedClusterFrame() {
+    ClusterWorld world;
+    frame = world.make_frame(31, T, true, &on_cluster);
+    world.move_cluster(Eigen::Vector3d(0, 0, 0.04));
+    Frame before = world.make_frame(31, T, true);
+    before.set_pose(T);
+    Frame early_frame = world.make_frame(0, T, true), late_frame = world.make_frame(30, T, true);
+    early_frame.set_pose(T);
+    late_frame.set_pose(T);
+    const KeyFramePtr early = map.create_keyframe(early_frame), late = map.create_keyframe(late_frame);
+    int cluster_keypoint = 0;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      if (on_cluster[i] && cluster_keypoint++ % kClusterEvery != 0) continue;
+      MapPointPtr mp = map.create_map_point(*before.unproject(i), early.get());
+      mp->add_observation(early.get(), i);
+      mp->add_observation(late.get(), i);
+      frame.set_map_point(i, mp);
+    }
+  }
+  // Camera-centre error of the stage pose, started at the prediction.
+  double error(const MotionPriorOptions& options, bool* applied) const {
+    Frame f = frame;
+    f.set_pose(T);
+    const std::optional<PosePrior> prior = motion_prior(T, options);
+    refine_pose_with_prior(f, PoseOptimizerOptions{}, StaticEvidenceOptions{}, prior, options, applied);
+    return (camera_centre(f.T_cam_world()) - camera_centre(T)).norm();
+  }
+};
+
+TEST(MotionPrior, HoldsThePredictionAgainstAClusterWithEvidence) {
+  const MovedClusterFrame scene;
+  MotionPriorOptions options;
+  bool applied = true;
+  const double off = scene.error(options, &applied);
+  EXPECT_FALSE(applied);
+  options.sigma_translation = 0.001;
+  const double on = scene.error(options, &applied);
+  EXPECT_TRUE(applied);
+  std::printf("pose error %.5f m without the prior, %.5f m with sigma 1 mm\n", off, on);
+  EXPECT_GT(off, 3e-3);  // 3.8 mm when written
+  EXPECT_LT(on, off / 3);  // 0.9 mm
+}
+
+TEST(MotionPrior, GateAppliesThePriorOnlyBeyondItsDistance) {
+  const MovedClusterFrame scene;
+  MotionPriorOptions options;
+  bool applied = false;
+  const double off = scene.error(options, &applied);
+  options.sigma_translation = 0.001;
+  const double always = scene.error(options, &applied);
+  // The pose without the prior lands `off` from the prediction.
+  options.gate = off / 2;
+  const double gated = scene.error(options, &applied);
+  EXPECT_TRUE(applied);
+  EXPECT_DOUBLE_EQ(gated, always);
+  options.gate = off * 2;
+  const double beyond = scene.error(options, &applied);
+  EXPECT_FALSE(applied);
+  EXPECT_DOUBLE_EQ(beyond, off);
+}
+
+TEST(MotionPrior, OffWithoutSigmaAndOptionsAreChecked) {
+  MotionPriorOptions options;
+  EXPECT_FALSE(motion_prior(Eigen::Isometry3d::Identity(), options));
+  options.sigma_translation = 0.002;
+  options.sigma_rotation = 0.03;
+  options.dead_zone = 0.001;
+  const std::optional<PosePrior> prior = motion_prior(test::pose_at(0.1), options);
+  ASSERT_TRUE(prior);
+  EXPECT_TRUE(prior->T_cam_world.isApprox(test::pose_at(0.1)));
+  EXPECT_EQ(prior->sigma_translation, 0.002);
+  EXPECT_EQ(prior->sigma_rotation, 0.03);
+  EXPECT_EQ(prior->dead_zone, 0.001);
+  options.check();
+  MotionPriorOptions bad = options;
+  bad.sigma_translation = -0.001;
+  EXPECT_THROW(bad.check(), OptionError);
+  bad = options;
+  bad.dead_zone = -0.001;
+  EXPECT_THROW(bad.check(), OptionError);
+  bad = options;
+  bad.gate = -0.001;
+  EXPECT_THROW(bad.check(), OptionError);
+  bad = options;
+  bad.sigma_rotation = 0;
+  EXPECT_THROW(bad.check(), OptionError);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ namespace stillslam {
 
 PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::Isometry3d& T_cam_world_init,
                                      const std::vector<PoseObservation>& observations,
-                                     const PoseOptimizerOptions& options) {
+                                     const PoseOptimizerOptions& options, const PosePrior* prior) {
   STILLSLAM_CHECK(T_cam_world_init.matrix().allFinite(), "optimize_pose: the initial pose is not finite");
   const Intrinsics k(camera);
   const std::size_t n = observations.size();
@@ -71,10 +71,12 @@ PoseOptimizationResult optimize_pose(const PinholeCamera& camera, const Eigen::I
     const auto residuals =
         std::make_unique<PoseResiduals>(k, T, observations, stereo, std::move(active), residual_options);
     double params[6] = {0, 0, 0, 0, 0, 0};
+    const std::unique_ptr<ceres::CostFunction> prior_cost(prior ? make_pose_prior_cost(T, *prior) : nullptr);
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
     problem.AddResidualBlock(residuals.get(), nullptr, params);
+    if (prior_cost) problem.AddResidualBlock(prior_cost.get(), nullptr, params);
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
     T = residuals->pose(params);

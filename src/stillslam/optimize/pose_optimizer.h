@@ -7,6 +7,7 @@
 
 #include "stillslam/geometry/pinhole_camera.h"
 #include "stillslam/optimize/observation_options.h"
+#include "stillslam/optimize/pose_prior.h"
 
 namespace stillslam {
 
@@ -37,10 +38,12 @@ struct PoseOptimizationResult {
 };
 
 // Observations whose point is behind the camera count as outliers. With no
-// observations the initial pose is returned unchanged.
+// observations the initial pose is returned unchanged. A prior (pose_prior.h)
+// adds its residual to every round; outliers are classified as without it.
 PoseOptimizationResult optimize_pose(const PinholeCamera& camera,
                                      const Eigen::Isometry3d& T_cam_world_init,
                                      const std::vector<PoseObservation>& observations,
-                                     const PoseOptimizerOptions& options = {});
+                                     const PoseOptimizerOptions& options = {},
+                                     const PosePrior* prior = nullptr);
 
 }  // namespace stillslam

@@ -55,6 +55,12 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
                "StaticEvidenceOptions.min_points", {3, 50000});
   keys.integer("staticEvidenceQuietFrames", tracker.static_evidence.quiet_frames,
                "StaticEvidenceOptions.quiet_frames", {0, 100000});
+  keys.number("motionPriorSigma", tracker.motion_prior.sigma_translation, "MotionPriorOptions.sigma_translation",
+              {0, 10});
+  keys.number("motionPriorRotationSigma", tracker.motion_prior.sigma_rotation, "MotionPriorOptions.sigma_rotation",
+              {0, 10, true});
+  keys.number("motionPriorDeadZone", tracker.motion_prior.dead_zone, "MotionPriorOptions.dead_zone", {0, 10});
+  keys.number("motionPriorGate", tracker.motion_prior.gate, "MotionPriorOptions.gate", {0, 10});
   keys.check([&] { tracker.check(); });
   // Relocalization.
   keys.integer("relocMinBowMatches", relocalizer.min_bow_matches, "RelocalizerOptions.min_bow_matches", {1, 50000});

@@ -12,7 +12,7 @@ PoseObservation pose_observation(const Frame& frame, std::size_t i) {
   return obs;
 }
 
-int refine_pose(Frame& frame, const PoseOptimizerOptions& options) {
+int refine_pose(Frame& frame, const PoseOptimizerOptions& options, const PosePrior* prior) {
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> observations;
   std::vector<std::size_t> index;
@@ -25,7 +25,7 @@ int refine_pose(Frame& frame, const PoseOptimizerOptions& options) {
     index.push_back(i);
   }
   if (observations.size() < 3) return 0;
-  const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), observations, options);
+  const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), observations, options, prior);
   frame.set_pose(result.T_cam_world);
   for (std::size_t k = 0; k < index.size(); ++k) frame.set_outlier(index[k], !result.inlier[k]);
   return result.num_inliers;

@@ -12,7 +12,8 @@ namespace stillslam {
 PoseObservation pose_observation(const Frame& frame, std::size_t i);
 
 // Returns the number of inlier observations. The frame must have a pose.
-int refine_pose(Frame& frame, const PoseOptimizerOptions& options = {});
+// A prior (optimize/pose_prior.h) joins the optimization when given.
+int refine_pose(Frame& frame, const PoseOptimizerOptions& options = {}, const PosePrior* prior = nullptr);
 
 // Clears the slots of outlier matches (they are not map observations of this
 // frame) and returns how many inliers are real map points (>= 1 observation).

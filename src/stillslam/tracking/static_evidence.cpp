@@ -30,8 +30,9 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
          frame_id - *last <= static_cast<std::uint64_t>(options.quiet_frames);
 }
 
-int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options) {
-  if (!options.enabled) return refine_pose(frame, pose);
+int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
+                            const PosePrior* prior) {
+  if (!options.enabled) return refine_pose(frame, pose, prior);
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> trusted, others;
   std::vector<std::size_t> trusted_index, other_index;
@@ -47,11 +48,11 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
       other_index.push_back(i);
     }
   }
-  if (static_cast<int>(trusted.size()) < options.min_points) return refine_pose(frame, pose);
-  const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), trusted, pose);
+  if (static_cast<int>(trusted.size()) < options.min_points) return refine_pose(frame, pose, prior);
+  const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), trusted, pose, prior);
   // The old points disagree among themselves (the map moved, or they are
   // mismatched): no consensus to lean on.
-  if (result.num_inliers < options.min_points) return refine_pose(frame, pose);
+  if (result.num_inliers < options.min_points) return refine_pose(frame, pose, prior);
   frame.set_pose(result.T_cam_world);
   for (std::size_t k = 0; k < trusted_index.size(); ++k) frame.set_outlier(trusted_index[k], !result.inlier[k]);
   const Intrinsics intrinsics(setup.camera);

@@ -51,7 +51,9 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 
 // refine_pose (tracking/pose_refinement.h) with the rule above: outlier
 // flags are set on all matches, the pose comes from those with evidence.
-// Returns the number of inlier observations.
-int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options);
+// Returns the number of inlier observations. A prior (optimize/pose_prior.h)
+// joins the optimization when given.
+int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
+                            const PosePrior* prior = nullptr);
 
 }  // namespace stillslam

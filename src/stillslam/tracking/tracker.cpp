@@ -78,6 +78,7 @@ TrackingResult Tracker::track(Frame& frame) {
   }
 
   update_last_frame();
+  motion_prior_.reset();
   bool ok = false;
   if (state_ == TrackingState::Ok) {
     if (velocity_) ok = track_with_motion_model(frame, result);
@@ -230,6 +231,7 @@ void Tracker::update_last_frame() {
 
 bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
   frame.set_pose(*velocity_ * last_frame_.T_cam_world());
+  motion_prior_ = motion_prior(frame.T_cam_world(), options_.motion_prior);
   frame.clear_map_points();
   int matches = search_by_projection(frame, last_frame_, options_.motion_search_radius);
   if (matches < kMinMotionMatches) {
@@ -238,13 +240,15 @@ bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
   }
   if (matches < kMinMotionMatches) {
     result.reason = "motion model: " + std::to_string(matches) + " matches";
+    motion_prior_.reset();
     return false;
   }
-  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
+  refine_stage_pose(frame);
   if (options_.probe) options_.probe(TrackingStage::MotionModel, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
     result.reason = "motion model: " + std::to_string(inliers) + " inliers";
+    motion_prior_.reset();  // the prediction did not hold
     return false;
   }
   return true;
@@ -335,7 +339,7 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
   const bool recovering = was_lost_ && frame.id() < last_lost_frame_id_ + 2;
   search_points(frame, local.points, recovering ? 5.f : options_.local_map_search_th);
   result.matches = frame.num_matches();
-  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
+  refine_stage_pose(frame);
   if (options_.probe) options_.probe(TrackingStage::LocalMap, frame, *map_);
   int inliers = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -373,6 +377,10 @@ void Tracker::cull_outlier_streaks(const Frame& frame, int inliers) {
       mp->set_bad();
     }
   }
+}
+
+int Tracker::refine_stage_pose(Frame& frame) {
+  return refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior);
 }
 
 bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {

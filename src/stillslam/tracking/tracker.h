@@ -13,6 +13,7 @@
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map.h"
 #include "stillslam/tracking/keyframe_budget.h"
+#include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/tracker_options.h"
 #include "stillslam/tracking/tracking_state.h"
 
@@ -82,6 +83,9 @@ class Tracker {
   void update_last_frame();
   KeyFrame* anchor_keyframe() const;
   void cull_outlier_streaks(const Frame& frame, int inliers);
+  // The motion-model and local-map pose stages: the evidence pose with this
+  // frame's motion prior (tracking/motion_prior.h), if any.
+  int refine_stage_pose(Frame& frame);
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   void create_keyframe(Frame& frame);
 
@@ -94,6 +98,7 @@ class Tracker {
   // corrections of that keyframe carry over to the motion prediction.
   Eigen::Isometry3d T_last_ref_ = Eigen::Isometry3d::Identity();
   std::optional<Eigen::Isometry3d> velocity_;  // T_cur_last of the last step
+  std::optional<PosePrior> motion_prior_;      // this frame's, set by the motion-model stage
   KeyFramePtr reference_keyframe_;
   KeyFramePtr last_keyframe_;
   std::uint64_t last_keyframe_frame_id_ = 0;

@@ -31,6 +31,7 @@ void TrackerOptions::check() const {
   at_least("TrackerOptions.outlier_streak_cull", outlier_streak_cull, 0);
   pose.check();
   static_evidence.check();
+  motion_prior.check();
 }
 
 }  // namespace stillslam

@@ -3,6 +3,7 @@
 #include "stillslam/tracking/depth_point_check.h"
 #include "stillslam/tracking/initial_view_check.h"
 #include "stillslam/tracking/keyframe_budget.h"
+#include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/static_evidence.h"
 #include "stillslam/tracking/tracking_probe.h"
 
@@ -47,6 +48,9 @@ struct TrackerOptions {
   // Motion-model, reference-keyframe and local-map poses from the map points
   // with static evidence (tracking/static_evidence.h).
   StaticEvidenceOptions static_evidence;
+  // The motion model's prediction as a prior in the motion-model and
+  // local-map pose stages (tracking/motion_prior.h).
+  MotionPriorOptions motion_prior;
   // Track against the map without changing it (a loaded map): no keyframes,
   // no map points; never initializes a map of its own.
   bool localization_only = false;

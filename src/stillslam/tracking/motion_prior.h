@@ -1,0 +1,45 @@
+#pragma once
+// The constant-velocity prediction as a prior on the pose stages (issue #20).
+// A close thing that earned static evidence while it stood still and then
+// walks off drags the evidence pose along the weakly fixed directions (the
+// far static points stay inside their chi2 bounds at the moved pose). The
+// motion model's prediction, weighted by optimize/pose_prior.h, holds those
+// directions. With a gate the prior is used only in a stage whose pose
+// without it lands farther than the gate from the prediction.
+#include <optional>
+
+#include "stillslam/map/frame.h"
+#include "stillslam/optimize/pose_prior.h"
+#include "stillslam/tracking/static_evidence.h"
+
+namespace stillslam {
+
+struct MotionPriorOptions {
+  // Tracking.motionPriorSigma: m, on the camera centre; 0: no prior.
+  double sigma_translation = 0;
+  // Tracking.motionPriorRotationSigma: rad.
+  double sigma_rotation = 0.01;
+  // Tracking.motionPriorDeadZone: m; camera-centre offsets from the
+  // prediction up to this cost nothing.
+  double dead_zone = 0;
+  // Tracking.motionPriorGate: m. > 0: a stage's pose is first estimated
+  // without the prior, and again with it only when that pose's camera
+  // centre lies farther than this from the prediction. 0: always the prior.
+  double gate = 0;
+  bool enabled() const { return sigma_translation > 0; }
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
+};
+
+// The prior around `predicted` (the motion model's pose for this frame);
+// nullopt when the options are off.
+std::optional<PosePrior> motion_prior(const Eigen::Isometry3d& predicted, const MotionPriorOptions& options);
+
+// refine_pose_on_evidence (static_evidence.h) with the prior and its gate;
+// without a prior it is refine_pose_on_evidence. `applied` (optional) tells
+// whether the returned pose used the prior. Returns the number of inliers.
+int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& evidence,
+                           const std::optional<PosePrior>& prior, const MotionPriorOptions& options,
+                           bool* applied = nullptr);
+
+}  // namespace stillslam
