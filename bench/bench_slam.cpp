@@ -37,6 +37,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -330,6 +331,14 @@ int bench(const Args& a) {
                 t.frames_without_pose);
     out["motion"] = {{"still_frames", t.still_frames}, {"still_kept", t.still_kept},
                      {"moved_frames", t.moved_frames}, {"moved_removed", t.moved_removed}};
+  }
+  if (settings.motion.sparse_view.enabled) {
+    // Frames per crowd-fallback action (tracking/sparse_view.h).
+    std::array<int, 5> n{};
+    for (const FrameStats& f : r.frames) ++n[static_cast<std::size_t>(std::clamp(f.build.motion.sparse_view, 0, 4))];
+    std::printf("  sparse view: %d tracked, %d blended, %d predicted, %d refused as a map start\n", n[1], n[2], n[3],
+                n[4]);
+    out["sparse_view"] = {{"tracked", n[1]}, {"blended", n[2]}, {"predicted", n[3]}, {"no_start", n[4]}};
   }
 
   fs::path gt = a.groundtruth;

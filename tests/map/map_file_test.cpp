@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <random>
+#include <set>
 
 #include "io/temp_dir.h"
 #include "map/map_builder.h"
@@ -259,6 +260,47 @@ TEST_F(MapFileTest, LoadedMapsReplaceAnEmptyAtlas) {
   std::vector<std::unique_ptr<Map>> more;
   for (LoadedMap& m : again.maps) more.push_back(std::move(m.map));
   EXPECT_THROW(atlas.replace_maps(std::move(more), 2, 3), Error);
+}
+
+// Points the motion stage saw on a person it kept as static track, but stay
+// out of the saved map; the keyframes' slots that held them load empty.
+TEST_F(MapFileTest, PointsSeenOnPeopleAreNotSaved) {
+  const auto points = map().map_points();
+  std::set<std::uint64_t> on_people;
+  for (std::size_t i = 0; i < points.size(); i += 4) {
+    points[i]->mark_on_dynamic_instance();
+    on_people.insert(points[i]->id());
+  }
+  ASSERT_GT(on_people.size(), 100u);
+  const auto path = dir_.path() / "map.bin";
+  const MapFileStats stats = save_map_file(path, context_, map());
+  EXPECT_EQ(stats.points_on_people, on_people.size());
+  EXPECT_EQ(stats.map_points, points.size() - on_people.size());
+
+  const MapFileContents loaded = load_map_file(path, context_);
+  const Map& copy = *loaded.maps[0].map;
+  ASSERT_EQ(copy.num_map_points(), points.size() - on_people.size());
+  for (const MapPointPtr& mp : copy.map_points()) EXPECT_EQ(on_people.count(mp->id()), 0u) << mp->id();
+  std::size_t slots_before = 0, slots_after = 0;
+  for (const KeyFramePtr& kf : map().keyframes()) {
+    const KeyFramePtr other = copy.keyframe(kf->id());
+    ASSERT_NE(other, nullptr);
+    for (std::size_t i = 0; i < kf->size(); ++i) {
+      const MapPointPtr& mp = kf->map_point(i);
+      if (mp && !on_people.count(mp->id())) {
+        ++slots_before;
+        ASSERT_NE(other->map_point(i), nullptr);
+        EXPECT_EQ(other->map_point(i)->id(), mp->id());
+      }
+      if (other->map_point(i)) ++slots_after;
+    }
+  }
+  EXPECT_GT(slots_before, 0u);
+  EXPECT_EQ(slots_after, slots_before);
+  // A point fused into another passes the flag on.
+  ASSERT_FALSE(points[1]->on_dynamic_instance());
+  points[0]->replace_with(points[1]);
+  EXPECT_TRUE(points[1]->on_dynamic_instance());
 }
 
 TEST_F(MapFileTest, MissingFileNamesIt) {

@@ -34,6 +34,24 @@ TEST(MotionSettings, KeysBindAndDefaultsStay) {
   EXPECT_EQ(s.motion.check_options().evidence.frames_for("chair"), 5);
 }
 
+TEST(MotionSettings, SparseViewKeysBind) {
+  TempDir dir;
+  const Settings defaults = load_settings(dir.write("a.yaml", kBase));
+  EXPECT_FALSE(defaults.motion.sparse_view.enabled);
+  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.masked_share, 0.5);
+  EXPECT_EQ(defaults.motion.sparse_view.inliers, 50);
+  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.tracked_weight, 0.5);
+  const Settings s = load_settings(dir.write(
+      "b.yaml", kBase + "Motion.sparseView: 1\nMotion.sparseViewMaskedShare: 0.6\nMotion.sparseViewInliers: 80\n"
+                        "Motion.sparseViewTrackedWeight: 0.3\n"));
+  EXPECT_TRUE(s.motion.sparse_view.enabled);
+  EXPECT_DOUBLE_EQ(s.motion.sparse_view.masked_share, 0.6);
+  EXPECT_EQ(s.motion.sparse_view.inliers, 80);
+  EXPECT_DOUBLE_EQ(s.motion.sparse_view.tracked_weight, 0.3);
+  const std::string e = test::settings_error(dir, kBase + "Motion.sparseViewTrackedWeight: 2\n");
+  EXPECT_NE(e.find("Motion.sparseViewTrackedWeight"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, BadValuesNameTheKey) {
   TempDir dir;
   EXPECT_NE(test::settings_error(dir, kBase + "Motion.span: 0\n").find("Motion.span' is 0: must be in [1, 100]"),

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stillslam/core/error.h"
+#include "stillslam/map/map_point.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/motion_stage.h"
@@ -73,6 +74,9 @@ class SceneSegmenter final : public Segmenter {
 struct StageRun {
   std::vector<MotionFrameStats> stats;
   std::vector<double> masked_share_person, masked_share_box;  // of the region in frame.dynamic_mask()
+  // Each frame's keypoints get fresh map points before the check: those it
+  // flagged as seen on a person (on the person's region, elsewhere), and culled.
+  std::vector<int> flagged_on_person, flagged_elsewhere, culled;
 };
 
 StageRun run_scene(int frames, bool box_moves, MotionOptions options) {
@@ -99,7 +103,17 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options) {
     Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
     T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
     frame.set_pose(T_world_cam.inverse());
-    stage.on_tracked(frame, true);
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      frame.set_map_point(i, std::make_shared<MapPoint>(i, Eigen::Vector3d::Zero(), nullptr));
+    }
+    out.culled.push_back(stage.on_tracked(frame, true));
+    int on_person = 0, elsewhere = 0;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      if (!frame.map_point(i)->on_dynamic_instance()) continue;
+      ++(person_at(k).contains(cv::Point(frame.keypoints_raw()[i].pt)) ? on_person : elsewhere);
+    }
+    out.flagged_on_person.push_back(on_person);
+    out.flagged_elsewhere.push_back(elsewhere);
     out.stats.push_back(stats.motion);
     const cv::Mat1b& mask = frame.dynamic_mask();
     auto share = [&](cv::Rect r) {
@@ -131,6 +145,12 @@ TEST(MotionStage, StillPersonLeavesTheMaskMovingBoxEntersIt) {
     EXPECT_GT(r.stats[k].features_kept_by_motion, 20);
   }
   for (int k = 0; k < first_static; ++k) EXPECT_EQ(r.stats[k].features_kept_by_motion, 0) << k;
+  // The points the kept person's features match are flagged (no saved map holds them), no other point is.
+  for (int k = 0; k < 30; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(r.flagged_on_person[k], k < first_static ? 0 : r.stats[k].features_kept_by_motion);
+    EXPECT_EQ(r.flagged_elsewhere[k], 0);
+  }
   // The box moves 3 px a frame against the wall: 18 px over the span, seen at
   // the first comparison, masked from the next frame on.
   for (int k = 0; k <= o.span; ++k) EXPECT_EQ(r.masked_share_box[k], 0.0) << k;
@@ -140,6 +160,9 @@ TEST(MotionStage, StillPersonLeavesTheMaskMovingBoxEntersIt) {
     EXPECT_EQ(r.stats[k].moving_instances, 1);
     EXPECT_GT(r.stats[k].features_removed_by_motion, 0);
   }
+  // In the frame that finds the box moving, the points of its still tracked features are culled.
+  EXPECT_EQ(r.culled[o.span - 1], 0);
+  EXPECT_GT(r.culled[o.span], 5);
 }
 
 TEST(MotionStage, StillBoxStaysUnmasked) {

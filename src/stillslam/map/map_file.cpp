@@ -253,7 +253,10 @@ struct MapFileAccess {
   static void write_map(ByteWriter& w, const MapToSave& entry) {
     const Map& map = *entry.map;
     w.put(map.id());
-    const std::vector<MapPointPtr> points = map.map_points();
+    // Points seen on people (kept as static by the motion check) stay out of
+    // the file; keyframe slots that held them are saved empty.
+    std::vector<MapPointPtr> points = map.map_points();
+    std::erase_if(points, [](const MapPointPtr& mp) { return mp->on_dynamic_instance(); });
     std::unordered_map<const MapPoint*, std::uint64_t> saved_points;
     for (const MapPointPtr& mp : points) saved_points.emplace(mp.get(), mp->id());
     const std::vector<KeyFramePtr> keyframes = map.keyframes();
@@ -571,7 +574,9 @@ MapFileStats save_map_file(const std::filesystem::path& path, const MapFileConte
   stats.maps = maps.size();
   for (const MapToSave& m : maps) {
     stats.keyframes += m.map->num_keyframes();
-    stats.map_points += m.map->num_map_points();
+    for (const MapPointPtr& mp : m.map->map_points()) {
+      ++(mp->on_dynamic_instance() ? stats.points_on_people : stats.map_points);
+    }
   }
   return stats;
 }

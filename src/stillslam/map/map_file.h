@@ -75,7 +75,8 @@ struct MapFileSaveOptions {
 struct MapFileStats {
   std::uint64_t bytes = 0;      // file size
   std::uint64_t raw_bytes = 0;  // payload before compression
-  std::size_t maps = 0, keyframes = 0, map_points = 0;
+  std::size_t maps = 0, keyframes = 0, map_points = 0;  // map_points: those saved
+  std::size_t points_on_people = 0;  // left out: MapPoint::on_dynamic_instance()
 };
 
 // Writes the maps (callers hold each map's update mutex, or no other thread

@@ -123,6 +123,8 @@ void MapPoint::replace_with(const std::shared_ptr<MapPoint>& other) {
   }
   other->increase_found(found_);
   other->increase_visible(visible_);
+  // A fused point holds the people's observations too.
+  if (on_dynamic_instance_) other->on_dynamic_instance_ = true;
   other->compute_distinctive_descriptor();
 }
 

@@ -73,6 +73,11 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   void record_outlier_frame(std::uint64_t frame_id) { last_outlier_frame_ = frame_id; }
   int visible() const { return visible_; }
   int found() const { return found_; }
+  // Seen on an instance of a dynamic class (a person) that the motion check
+  // kept as static (tracking/motion_stage.h): it may track, but it is never
+  // saved with the map, so maps for localization hold no people.
+  bool on_dynamic_instance() const { return on_dynamic_instance_; }
+  void mark_on_dynamic_instance() { on_dynamic_instance_ = true; }
 
   // Recomputes the representative descriptor: the observation descriptor with
   // the least median Hamming distance to all others.
@@ -102,6 +107,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   int visible_ = 1, found_ = 1;
   int outlier_streak_ = 0;  // not saved in map files: a tracking statistic like the two above
   std::optional<std::uint64_t> last_outlier_frame_;  // nor this one
+  bool on_dynamic_instance_ = false;  // such points are left out of map files
   bool bad_ = false;
   std::shared_ptr<MapPoint> replaced_by_;
 };

@@ -11,6 +11,11 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.integer("personFrames", options.person_frames, "MotionOptions.person_frames", {1, 10000});
   keys.integer("defaultFrames", options.default_frames, "MotionOptions.default_frames", {1, 10000});
   keys.number("minIou", options.min_iou, "MotionOptions.min_iou", {0, 1, true});
+  keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");
+  keys.number("sparseViewMaskedShare", options.sparse_view.masked_share, "SparseViewOptions.masked_share", {0, 1});
+  keys.integer("sparseViewInliers", options.sparse_view.inliers, "SparseViewOptions.inliers", {0, 100000});
+  keys.number("sparseViewTrackedWeight", options.sparse_view.tracked_weight, "SparseViewOptions.tracked_weight",
+              {0, 1});
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

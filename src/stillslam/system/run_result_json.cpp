@@ -34,7 +34,7 @@ nlohmann::json run_result_json(const RunResult& result, const std::vector<std::s
   if (result.map_file) {
     stats["map_file"] = {{"bytes", result.map_file->bytes}, {"maps", result.map_file->maps},
                          {"keyframes", result.map_file->keyframes}, {"map_points", result.map_file->map_points},
-                         {"save_ms", result.save_map_ms}};
+                         {"points_on_people", result.map_file->points_on_people}, {"save_ms", result.save_map_ms}};
   }
   if (result.map_file_error) stats["map_file_error"] = *result.map_file_error;
   nlohmann::json frames = nlohmann::json::array();

@@ -195,6 +195,7 @@ void System::build_pipeline(const Settings& settings) {
   TrackerOptions tracking = settings.tracking;
   tracking.localization_only = options_.localization_only;
   tracking.probe = options_.tracking_probe;
+  tracking.sparse_view = settings.motion.sparse_view;
   if (async_masks_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
@@ -361,6 +362,7 @@ FrameStats System::process(const SensorFrame& input) {
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
   stats.keyframe_deferred = result.keyframe_deferred;
+  stats.build.motion.sparse_view = static_cast<int>(result.sparse_view);
   if (motion_stage_) {
     std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
     stats.build.motion.map_points_culled = motion_stage_->on_tracked(frame, result.state == TrackingState::Ok);

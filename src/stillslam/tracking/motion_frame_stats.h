@@ -14,6 +14,9 @@ struct MotionFrameStats {
   int features_kept_by_motion = 0;
   int instance_features = 0;  // extracted inside the mask for the check only
   int map_points_culled = 0;  // on instances found moving, after tracking
+  // The crowd fallback's action on the frame (tracking/sparse_view.h,
+  // SparseView: 0 none, 1 tracked, 2 blended, 3 predicted, 4 no map start).
+  int sparse_view = 0;
 };
 
 }  // namespace stillslam

@@ -11,6 +11,7 @@ void MotionOptions::check() const {
   in_range("MotionOptions.person_frames", person_frames, 1, 10000);
   in_range("MotionOptions.default_frames", default_frames, 1, 10000);
   in_half_open("MotionOptions.min_iou", min_iou, 0, 1);
+  sparse_view.check();
 }
 
 InstanceMotionCheckOptions MotionOptions::check_options() const {

@@ -3,6 +3,7 @@
 // segmented instances are judged by their motion (instance_motion_check.h)
 // instead of by class alone. Off by default (see config/README.md).
 #include "stillslam/tracking/instance_motion_check.h"
+#include "stillslam/tracking/sparse_view.h"
 
 namespace stillslam {
 
@@ -15,6 +16,9 @@ struct MotionOptions {
   int person_frames = 10;  // agreeing frames a person needs before it is kept as static
   int default_frames = 10; // the same for every other class
   double min_iou = 0.3;    // mask overlap for an instance to keep its id across segmentations
+  // The crowd fallback (Motion.sparseView*): the tracker's, with or without
+  // `enabled` above (System copies it into TrackerOptions).
+  SparseViewOptions sparse_view;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
   InstanceMotionCheckOptions check_options() const;

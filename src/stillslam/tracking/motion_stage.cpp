@@ -2,27 +2,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
+#include "stillslam/features/brief_pattern.h"
 #include "stillslam/map/map_point.h"
 #include "stillslam/segmentation/dynamic_mask.h"
+#include "stillslam/tracking/instance_box_features.h"
 
 namespace stillslam {
 
 namespace {
 
-// Checked before the extractor is made of them, so a bad value names its Motion key.
+// Checked first, so a bad value names its Motion key.
 OrbOptions instance_orb(OrbOptions orb, const MotionOptions& options) {
   options.check();
   orb.n_features = options.instance_features;
+  orb.check();
   return orb;
 }
+
+// Context around an instance's box for the ORB patch and the FAST border.
+constexpr int kBoxPad = 2 * (BriefPattern::kRadius + 1);
 
 }  // namespace
 
 MotionStage::MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std::vector<int> dynamic_class_ids,
                          int dilation_px, MotionOptions options)
     : camera_(camera),
-      extractor_(instance_orb(orb, options)),
+      orb_(instance_orb(orb, options)),
       dynamic_class_ids_(std::move(dynamic_class_ids)),
       dilation_px_(dilation_px),
       options_(std::move(options)),
@@ -51,6 +58,7 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
   categories_.clear();
   dynamic_ids_.clear();
   inside_ = MotionCheckFrame{};
+  boxes_.clear();
   std::vector<cv::Mat1b> masks;
   std::vector<int> classes;
   for (const Detection& d : detections) {
@@ -80,7 +88,10 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
     if (std::find(dynamic_class_ids_.begin(), dynamic_class_ids_.end(), classes[n]) != dynamic_class_ids_.end()) {
       dynamic_ids_.insert(id);
     }
-    if (masked(id)) masked_instances.push_back(masks[n]);
+    if (masked(id)) {
+      masked_instances.push_back(masks[n]);
+      boxes_.push_back(cv::boundingRect(masks[n]));
+    }
   }
   cv::Mat1b out = dynamic_mask(masked_instances, size, dilation_px_);
   if (!held.empty()) cv::bitwise_or(out, held, out);
@@ -107,9 +118,9 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
     stats.features_kept_by_motion += id != 0 && dynamic_ids_.count(id);
   }
   if (exclude.empty() || cv::countNonZero(exclude) == 0) return;
-  // The masked area only: its own small budget, apart from the frame's.
-  const cv::Mat1b outside = exclude == 0;
-  const OrbFeatures f = extractor_.extract(gray, outside, nullptr);
+  // The masked instances' boxes only: their own small budget, apart from the frame's.
+  const OrbFeatures f = extract_in_boxes(orb_, orb_.n_features, gray, exclude,
+                                         merge_instance_boxes(boxes_, kBoxPad, gray.size()));
   const std::vector<cv::KeyPoint> undistorted = camera_.undistort(f.keypoints);
   std::vector<int> rows;
   for (std::size_t i = 0; i < f.keypoints.size(); ++i) {
@@ -163,14 +174,18 @@ int MotionStage::on_tracked(const Frame& frame, bool tracked) {
     if (s.verdict == MotionVerdict::Disagrees) moving_.insert(id);
     if (s.is_static) moving_.erase(id);
   }
-  // Map points seen on an instance that is now judged moving leave the map.
+  // Map points seen on an instance that is now judged moving leave the map;
+  // those seen on a person kept as static are flagged so no saved map holds them.
   int culled = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
-    if (frame_labels[i] == 0 || !masked(frame_labels[i])) continue;
+    if (frame_labels[i] == 0) continue;
     const MapPointPtr& mp = frame.map_point(i);
-    if (mp && !mp->is_bad()) {
+    if (!mp || mp->is_bad()) continue;
+    if (masked(frame_labels[i])) {
       mp->set_bad();
       ++culled;
+    } else if (dynamic_ids_.count(frame_labels[i])) {
+      mp->mark_on_dynamic_instance();
     }
   }
   return culled;

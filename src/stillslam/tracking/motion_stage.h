@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "stillslam/features/orb_extractor.h"
+#include "stillslam/features/orb_options.h"
 #include "stillslam/geometry/pinhole_camera.h"
 #include "stillslam/map/frame.h"
 #include "stillslam/segmentation/detection.h"
@@ -33,8 +33,8 @@ namespace stillslam {
 
 class MotionStage {
  public:
-  // `orb`: the frame's extraction settings; the stage's own extractor keeps
-  // them with options.instance_features as its budget.
+  // `orb`: the frame's extraction settings; the features inside masked
+  // instances use them with options.instance_features as their budget.
   MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std::vector<int> dynamic_class_ids,
               int dilation_px, MotionOptions options);
 
@@ -67,7 +67,7 @@ class MotionStage {
   bool masked(std::uint32_t id) const;
 
   PinholeCamera camera_;
-  OrbExtractor extractor_;
+  OrbOptions orb_;  // the frame's extraction settings (instance_box_features.h shares out the budget)
   std::vector<int> dynamic_class_ids_;
   int dilation_px_;
   MotionOptions options_;
@@ -79,6 +79,7 @@ class MotionStage {
   cv::Mat1i labels_;
   std::map<std::uint32_t, std::string> categories_;
   std::set<std::uint32_t> dynamic_ids_;  // of a dynamic class
+  std::vector<cv::Rect> boxes_;          // of the masked instances, where their features are extracted
   MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
 };
 

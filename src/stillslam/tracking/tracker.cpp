@@ -9,6 +9,7 @@
 #include "stillslam/tracking/keyframe_admission.h"
 #include "stillslam/tracking/local_map.h"
 #include "stillslam/tracking/pose_refinement.h"
+#include "stillslam/tracking/sparse_view.h"
 #include "stillslam/tracking/static_evidence.h"
 
 namespace stillslam {
@@ -60,6 +61,7 @@ TrackingResult Tracker::track(Frame& frame) {
       result.reason = "localization only: no map to track";
       return result;
     }
+    if (refuse_sparse_start(frame, result)) return result;
     const Start start = try_to_start_map(frame, result);
     if (start == Start::Waiting) {
       result.state = state_;
@@ -87,6 +89,7 @@ TrackingResult Tracker::track(Frame& frame) {
     ok = track_while_lost(frame, result);
   }
   if (ok) ok = track_local_map(frame, result);
+  ok = sparse_view_fallback(frame, result, ok);
 
   if (ok) {
     const bool recovered = state_ == TrackingState::Lost;
@@ -102,7 +105,9 @@ TrackingResult Tracker::track(Frame& frame) {
     } else {
       velocity_.reset();
     }
-    bool want_keyframe = !options_.localization_only && need_new_keyframe(frame, result.inliers);
+    // A predicted pose matched nothing: no keyframe from it.
+    bool want_keyframe = !options_.localization_only && result.sparse_view != SparseView::Predicted &&
+                         need_new_keyframe(frame, result.inliers);
     if (want_keyframe && options_.max_keyframe_mask_age >= 0 && frame.mask_age() > options_.max_keyframe_mask_age) {
       result.keyframe_deferred = true;  // no map points from a stale mask: a later frame
       want_keyframe = false;
@@ -127,6 +132,38 @@ TrackingResult Tracker::track(Frame& frame) {
   }
   result.state = state_;
   return result;
+}
+
+bool Tracker::refuse_sparse_start(const Frame& frame, TrackingResult& result) {
+  if (!is_sparse_view(frame, options_.sparse_view)) return false;
+  start_candidate_.reset();
+  result.state = state_;
+  result.sparse_view = SparseView::NoStart;
+  result.reason = "the masks hide " + std::to_string(static_cast<int>(100 * masked_share(frame))) +
+                  " % of the view: no map starts from it";
+  return true;
+}
+
+bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok) {
+  if (!is_sparse_view(frame, options_.sparse_view)) return ok;
+  if (ok && result.inliers >= options_.sparse_view.inliers) {
+    result.sparse_view = SparseView::Tracked;
+    return true;
+  }
+  // Only while tracking: after a loss there is no velocity to predict with.
+  if (state_ != TrackingState::Ok || !velocity_ || !last_frame_.has_pose()) return ok;
+  const Eigen::Isometry3d predicted = *velocity_ * last_frame_.T_cam_world();
+  if (ok) {
+    frame.set_pose(blend_poses(predicted, frame.T_cam_world(), options_.sparse_view.tracked_weight));
+    result.sparse_view = SparseView::Blended;
+    return true;
+  }
+  // The failed matches do not carry over to the next frame.
+  frame.clear_map_points();
+  frame.set_pose(predicted);
+  result.sparse_view = SparseView::Predicted;
+  result.reason = "sparse view: constant-velocity prediction";
+  return true;
 }
 
 Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {

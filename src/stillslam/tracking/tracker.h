@@ -40,6 +40,7 @@ struct TrackingResult {
   // A keyframe was due but the frame's mask was too old (max_keyframe_mask_age).
   bool keyframe_deferred = false;
   bool relocalized = false;  // recovered from Lost by relocalization (reason "relocalized")
+  SparseView sparse_view = SparseView::None;  // the crowd fallback's action (tracking/sparse_view.h)
   // When Ok: the frame's reference keyframe and its pose relative to it, taken
   // under the map lock (local BA may move the keyframe right after).
   KeyFramePtr reference;
@@ -79,6 +80,11 @@ class Tracker {
   bool track_reference_keyframe(Frame& frame, TrackingResult& result);
   bool track_while_lost(Frame& frame, TrackingResult& result);
   bool track_local_map(Frame& frame, TrackingResult& result);
+  // The crowd fallback (tracking/sparse_view.h): true when no map may start
+  // from this frame; after tracking, the pose of a sparse view (returns
+  // whether the frame has one).
+  bool refuse_sparse_start(const Frame& frame, TrackingResult& result);
+  bool sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok);
   int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
   void update_last_frame();
   KeyFrame* anchor_keyframe() const;

@@ -11,6 +11,7 @@ void TrackerOptions::check() const {
   at_least("TrackerOptions.init_min_keypoints", init_min_keypoints, 1);
   at_least("TrackerOptions.max_keyframe_mask_age", max_keyframe_mask_age, -1);
   initial_view.check();
+  sparse_view.check();
   at_least("TrackerOptions.init_confirm_frames", init_confirm_frames, 0);
   at_least("TrackerOptions.init_wait_frames", init_wait_frames, 0);
   at_least("TrackerOptions.max_frames_between_keyframes", max_frames_between_keyframes, 0);

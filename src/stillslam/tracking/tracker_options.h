@@ -4,6 +4,7 @@
 #include "stillslam/tracking/initial_view_check.h"
 #include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/motion_prior.h"
+#include "stillslam/tracking/sparse_view.h"
 #include "stillslam/tracking/static_evidence.h"
 #include "stillslam/tracking/tracking_probe.h"
 
@@ -59,6 +60,9 @@ struct TrackerOptions {
   // Segmentation.keyframeMaskAge in async mode); the keyframe is deferred to
   // a later frame. -1: any age.
   int max_keyframe_mask_age = -1;
+  // The crowd fallback when masks hide most of the view (tracking/sparse_view.h,
+  // Motion.sparseView*).
+  SparseViewOptions sparse_view;
   // Diagnostics only (tracking/tracking_probe.h): sees every stage's result.
   TrackingProbe probe;
   // Throws OptionError naming the field, its value and the valid range.

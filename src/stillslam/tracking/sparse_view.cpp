@@ -1,0 +1,37 @@
+#include "stillslam/tracking/sparse_view.h"
+
+#include <opencv2/core.hpp>
+
+#include "stillslam/core/option_check.h"
+
+namespace stillslam {
+
+void SparseViewOptions::check() const {
+  using namespace option_check;
+  in_range("SparseViewOptions.masked_share", masked_share, 0.0, 1.0);
+  in_range("SparseViewOptions.inliers", inliers, 0, 100000);
+  in_range("SparseViewOptions.tracked_weight", tracked_weight, 0.0, 1.0);
+}
+
+double masked_share(const Frame& frame) {
+  const cv::Mat1b& mask = frame.dynamic_mask();
+  if (mask.empty()) return 0.0;
+  return static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
+}
+
+bool is_sparse_view(const Frame& frame, const SparseViewOptions& options) {
+  return options.enabled && !frame.dynamic_mask().empty() && masked_share(frame) >= options.masked_share;
+}
+
+Eigen::Isometry3d blend_poses(const Eigen::Isometry3d& predicted, const Eigen::Isometry3d& tracked,
+                              double tracked_weight) {
+  // Camera centres blend along the path, not through the world origin.
+  const Eigen::Isometry3d p = predicted.inverse(), t = tracked.inverse();
+  const Eigen::Quaterniond qp(p.rotation()), qt(t.rotation());
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = qp.slerp(tracked_weight, qt).normalized().toRotationMatrix();
+  out.translation() = (1.0 - tracked_weight) * p.translation() + tracked_weight * t.translation();
+  return out.inverse();
+}
+
+}  // namespace stillslam

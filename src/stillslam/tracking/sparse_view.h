@@ -1,0 +1,43 @@
+#pragma once
+// The crowd fallback (issue #19): when the dynamic masks hide most of the
+// view, the few static matches left give a noisy pose, or none. Then the
+// tracked pose is pulled toward the constant-velocity prediction, and when
+// tracking fails the prediction itself is kept, so the camera keeps a pose
+// through the crowd. No map starts from a view the masks hide.
+#include <Eigen/Geometry>
+
+#include <string>
+
+#include "stillslam/map/frame.h"
+
+namespace stillslam {
+
+struct SparseViewOptions {
+  bool enabled = false;          // Motion.sparseView
+  double masked_share = 0.5;     // a view is sparse when its mask covers at least this share
+  int inliers = 50;              // ...and tracking found fewer map-point inliers than this
+  double tracked_weight = 0.5;   // the tracked pose's share of the blend (1: tracked pose only)
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
+};
+
+// What the fallback did to a frame (stats.json `motion.sparse_view`).
+enum class SparseView {
+  None = 0,       // not sparse, or the fallback is off
+  Tracked = 1,    // sparse, but tracking found enough inliers: its pose as tracked
+  Blended = 2,    // sparse with few inliers: the pose pulled toward the prediction
+  Predicted = 3,  // sparse and tracking failed: the constant-velocity prediction
+  NoStart = 4,    // sparse before the map started: no map starts from it
+};
+
+// Share of the frame's pixels under its dynamic mask (0 without a mask).
+double masked_share(const Frame& frame);
+
+bool is_sparse_view(const Frame& frame, const SparseViewOptions& options);
+
+// `tracked_weight` of the way from `predicted` to `tracked` (rotation by
+// slerp, camera centre linearly); both are T_cam_world.
+Eigen::Isometry3d blend_poses(const Eigen::Isometry3d& predicted, const Eigen::Isometry3d& tracked,
+                              double tracked_weight);
+
+}  // namespace stillslam

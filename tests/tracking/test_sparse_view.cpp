@@ -1,0 +1,153 @@
+// The crowd fallback (tracking/sparse_view.h): a view the masks hide gets the
+// constant-velocity prediction when tracking fails, a blend of tracked and
+// predicted pose when few inliers are left, and never starts a map.
+#include <gtest/gtest.h>
+
+#include "map/synthetic_scene.h"
+#include "stillslam/core/error.h"
+#include "stillslam/tracking/sparse_view.h"
+#include "stillslam/tracking/tracker.h"
+
+namespace stillslam {
+namespace {
+
+cv::Mat1b mask_of_left_part(double share) {
+  cv::Mat1b mask(480, 640, std::uint8_t{0});
+  mask.colRange(0, static_cast<int>(std::lround(share * 640))).setTo(255);
+  return mask;
+}
+
+Eigen::Vector3d centre(const Frame& f) { return f.T_cam_world().inverse().translation(); }
+
+TEST(SparseView, BlendMovesTheCameraCentreAndRotationPartWay) {
+  const Eigen::Isometry3d predicted = test::pose_at(0.0, 0.0, 0.0);
+  const Eigen::Isometry3d tracked = test::pose_at(0.1, 0.02, 10.0);
+  const auto c = [](const Eigen::Isometry3d& T) { return Eigen::Vector3d(T.inverse().translation()); };
+  EXPECT_LT((c(blend_poses(predicted, tracked, 0.0)) - c(predicted)).norm(), 1e-12);
+  EXPECT_LT((c(blend_poses(predicted, tracked, 1.0)) - c(tracked)).norm(), 1e-12);
+  const Eigen::Isometry3d half = blend_poses(predicted, tracked, 0.25);
+  EXPECT_LT((c(half) - (0.75 * c(predicted) + 0.25 * c(tracked))).norm(), 1e-12);
+  const double angle = Eigen::AngleAxisd(predicted.rotation().transpose() * tracked.rotation()).angle();
+  const double part = Eigen::AngleAxisd(predicted.rotation().transpose() * half.rotation()).angle();
+  EXPECT_NEAR(part, 0.25 * angle, 1e-9);
+  EXPECT_GT(angle, 0.1);
+}
+
+TEST(SparseView, SparseWhenTheMaskCoversTheShare) {
+  test::SyntheticScene scene(500);
+  Frame f = scene.make_frame(0, test::pose_at(0));
+  SparseViewOptions o;
+  o.enabled = true;
+  EXPECT_FALSE(is_sparse_view(f, o));  // no mask
+  f.set_dynamic_mask(mask_of_left_part(0.6));
+  EXPECT_NEAR(masked_share(f), 0.6, 1e-3);
+  EXPECT_TRUE(is_sparse_view(f, o));
+  o.masked_share = 0.7;
+  EXPECT_FALSE(is_sparse_view(f, o));
+  o.masked_share = 0.5;
+  o.enabled = false;
+  EXPECT_FALSE(is_sparse_view(f, o));
+}
+
+TEST(SparseView, OptionsOutOfRangeNameTheField) {
+  SparseViewOptions o;
+  o.tracked_weight = 1.5;
+  try {
+    o.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("SparseViewOptions.tracked_weight"), std::string::npos) << e.what();
+  }
+}
+
+struct SparseTracker {
+  test::SyntheticScene scene{2500};
+  Map map;
+  Tracker tracker;
+  std::uint64_t id = 0;
+  explicit SparseTracker(double tracked_weight, int inliers)
+      : tracker(map, options(tracked_weight, inliers), {}) {}
+  static TrackerOptions options(double tracked_weight, int inliers) {
+    TrackerOptions o;
+    o.init_min_keypoints = 300;
+    o.sparse_view.enabled = true;
+    o.sparse_view.tracked_weight = tracked_weight;
+    o.sparse_view.inliers = inliers;
+    return o;
+  }
+  // Starts the map and tracks frames 0.01 m apart along x, unmasked.
+  void start(int frames) {
+    for (int i = 0; i < frames; ++i) {
+      Frame f = scene.make_frame(id, test::pose_at(0.01 * static_cast<double>(id)));
+      ++id;
+      f.set_dynamic_mask(mask_of_left_part(0));
+      tracker.track(f);
+    }
+    ASSERT_EQ(tracker.state(), TrackingState::Ok);
+  }
+};
+
+TEST(SparseView, TrackingFailsInAHiddenViewThePredictionIsKept) {
+  SparseTracker t(0.5, 50);
+  t.start(8);
+  const std::size_t keyframes = t.map.num_keyframes();
+  // Another scene's few points: nothing matches the map.
+  test::SyntheticScene elsewhere(60, 99);
+  Frame f = elsewhere.make_frame(t.id, test::pose_at(0.5));
+  f.set_dynamic_mask(mask_of_left_part(0.7));
+  const TrackingResult r = t.tracker.track(f);
+  ASSERT_EQ(r.state, TrackingState::Ok) << r.reason;
+  EXPECT_EQ(r.sparse_view, SparseView::Predicted);
+  EXPECT_FALSE(r.new_keyframe);
+  EXPECT_EQ(t.map.num_keyframes(), keyframes);
+  // Constant velocity: 0.01 m further along x than the last frame (frame 0 is the origin).
+  EXPECT_LT((centre(f) - Eigen::Vector3d(0.01 * static_cast<double>(t.id), 0, 0)).norm(), 1e-4);
+  EXPECT_EQ(f.num_matches(), 0);
+  // The same frame without the fallback is lost.
+  SparseTracker off(0.5, 50);
+  off.start(8);
+  Frame g = elsewhere.make_frame(off.id, test::pose_at(0.5));
+  g.set_dynamic_mask(mask_of_left_part(0.3));  // not sparse: no fallback
+  EXPECT_EQ(off.tracker.track(g).state, TrackingState::Lost);
+}
+
+TEST(SparseView, FewInliersBlendTheTrackedPoseWithThePrediction) {
+  // Every sparse frame counts as having few inliers.
+  SparseTracker t(0.5, 100000);
+  t.start(8);
+  // The camera jumps 4 mm beyond the constant-velocity prediction.
+  const double x = 0.01 * static_cast<double>(t.id) + 0.004;
+  Frame f = t.scene.make_frame(t.id, test::pose_at(x));
+  f.set_dynamic_mask(mask_of_left_part(0.6));
+  const TrackingResult r = t.tracker.track(f);
+  ASSERT_EQ(r.state, TrackingState::Ok) << r.reason;
+  EXPECT_EQ(r.sparse_view, SparseView::Blended);
+  EXPECT_NEAR(centre(f).x(), x - 0.002, 1e-4);
+  // A view that is not sparse keeps its tracked pose.
+  ++t.id;
+  Frame g = t.scene.make_frame(t.id, test::pose_at(x + 0.01));
+  g.set_dynamic_mask(mask_of_left_part(0.2));
+  const TrackingResult rg = t.tracker.track(g);
+  EXPECT_EQ(rg.sparse_view, SparseView::None);
+  EXPECT_NEAR(centre(g).x(), x + 0.01, 1e-4);
+}
+
+TEST(SparseView, NoMapStartsFromAHiddenView) {
+  SparseTracker t(0.5, 50);
+  TrackerOptions o = SparseTracker::options(0.5, 50);
+  o.init_wait_frames = 2;
+  Tracker tracker(t.map, o, {});
+  // Beyond the start's wait, a mostly masked view still starts nothing.
+  for (int i = 0; i < 6; ++i) {
+    Frame f = t.scene.make_frame(static_cast<std::uint64_t>(i), test::pose_at(0));
+    f.set_dynamic_mask(mask_of_left_part(0.7));
+    const TrackingResult r = tracker.track(f);
+    EXPECT_EQ(r.state, TrackingState::NotInitialized);
+    EXPECT_EQ(r.sparse_view, SparseView::NoStart);
+    EXPECT_NE(r.reason.find("70 %"), std::string::npos) << r.reason;
+  }
+  EXPECT_EQ(t.map.num_keyframes(), 0u);
+}
+
+}  // namespace
+}  // namespace stillslam
