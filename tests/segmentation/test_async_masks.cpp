@@ -131,6 +131,20 @@ TEST(AsyncMasks, OrdinaryFramesDoNotWaitForABusySegmenter) {
   EXPECT_FALSE(gate->timed_out);
 }
 
+TEST(AsyncMasks, CarriedMaskGrowthIsCapped) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMaskOptions o = options(100, 0, 100);
+  o.grow_px_per_frame = 4;
+  o.max_grow_px = 10;
+  AsyncMasks masks(*stage, o);
+  // Frame 0's 10x10 square at the top-left corner, carried without a
+  // propagator: it grows 4 px per input frame of age until the 10 px cap.
+  std::vector<int> widths;
+  for (std::size_t f : {0, 1, 2, 3, 8, 40}) widths.push_back(cv::countNonZero(masks.mask_for(image(), f).mask.row(0)));
+  EXPECT_EQ(widths, (std::vector<int>{10, 14, 18, 20, 20, 20}));
+}
+
 }  // namespace
 }  // namespace stillslam
 

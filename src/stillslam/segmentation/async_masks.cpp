@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+
 #include "stillslam/core/option_check.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
@@ -15,6 +17,7 @@ void AsyncMaskOptions::check() const {
   at_least("SegmentationOptions.max_mask_age", max_mask_age, 0);
   at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
   at_least("AsyncMaskOptions.grow_px_per_frame", grow_px_per_frame, 0);
+  at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", text(modelled_latency),
                       "must be at most max_mask_age (" + text(max_mask_age) + ")");
@@ -26,6 +29,7 @@ AsyncMaskOptions AsyncMaskOptions::from(const SegmentationOptions& segmentation)
   o.interval = segmentation.interval;
   o.max_mask_age = segmentation.max_mask_age;
   o.modelled_latency = segmentation.modelled_latency;
+  o.max_grow_px = segmentation.max_grow_px;
   return o;
 }
 
@@ -131,7 +135,7 @@ void AsyncMasks::wait_for(std::size_t frame_index) {
 }
 
 cv::Mat1b AsyncMasks::carried(const SegmentationResult& result, int age) const {
-  const int grow = age * options_.grow_px_per_frame;
+  const int grow = std::min(age * options_.grow_px_per_frame, options_.max_grow_px);
   if (age == 0 || grow == 0 || result.dynamic_mask.empty() || cv::countNonZero(result.dynamic_mask) == 0) {
     return result.dynamic_mask;
   }
