@@ -74,6 +74,9 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
     fresh.gray = kept->second.gray;
     fresh.depth = kept->second.depth;
     fresh.instances = fresh_->instances;
+    // Instances the segmenter lost (MaskHold) move like the others: with the
+    // camera and their own flow, not left where they were in the image.
+    fresh.instances.insert(fresh.instances.end(), fresh_->held_instances.begin(), fresh_->held_instances.end());
     fresh.T_cam_world = kept->second.T_cam_world;
     propagator_->reset(std::move(fresh));
     reset_from_ = fresh_->frame_index;
@@ -84,14 +87,7 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
   last_propagated_ = frame_index;
   // A disc like the fresh masks' dilation, computed only around the mask
   // (grow_mask), not over the whole frame.
-  cv::Mat1b out = grow_mask(moved.union_mask, dilation_px_);
-  // Instances the segmenter lost (MaskHold) are held as they were, grown.
-  if (!fresh_->held_mask.empty()) {
-    SegmentationResult held;
-    held.dynamic_mask = fresh_->held_mask;
-    cv::bitwise_or(out, carried(held, age), out);
-  }
-  return out;
+  return grow_mask(moved.union_mask, dilation_px_);
 }
 
 bool AsyncMasks::stage_busy() const { return stage_.threaded() ? stage_.busy() : !pending_.empty(); }
