@@ -239,6 +239,7 @@ int main(int argc, char** argv) {
     SegmentationWorker worker(std::make_unique<YoloSegmenter>(options_for(model, net_threads)), {0}, 3);
     std::vector<double> seq_total, seq_orb, seq_seg, par_total, par_orb, par_wait;
     std::size_t kept_seq = 0, kept_par = 0;
+    std::size_t index = 0;  // the worker's MaskHold ages held people by frame index
     for (int pass = 0; pass < 2; ++pass) {  // pass 0 warms up
       for (const auto& f : seq) {
         // Sequential: ORB, then segmentation and the mask, on this thread.
@@ -255,7 +256,7 @@ int main(int argc, char** argv) {
         const double seq_ms = total.elapsed_ms();
         // Overlapped: submit, ORB on this thread, then wait for the mask.
         total.restart();
-        auto future = worker.submit(f);
+        auto future = worker.submit(f, index++);
         std::vector<cv::KeyPoint> kps2;
         cv::Mat desc2;
         w.restart();

@@ -133,6 +133,43 @@ TEST(MaskPropagation, MovingBlobFollowedByFlowFrameToFrame) {
   }
 }
 
+// Two people under one mask (a union of masks, or merged detections) walking
+// apart: tracked as two parts each follows its person; one motion fitted to
+// both (splitMinPx 0) follows at most one of them.
+TEST(MaskPropagation, PartsOfOneInstanceAreFollowedApart) {
+  MovingBlob left, right;
+  left.start = {100, 120};
+  left.velocity = {0, -8};
+  right.start = {220, 120};
+  right.velocity = {0, 8};
+  right.object = texture(kSize + cv::Size(200, 200), 5);
+  const auto both_mask = [&](int k) {
+    cv::Mat1b m;
+    cv::bitwise_or(left.mask(k), right.mask(k), m);
+    return m;
+  };
+  const auto image = [&](int k) {
+    cv::Mat1b img = left.image(k);
+    right.image(k).copyTo(img, right.mask(k));
+    return img;
+  };
+  std::vector<double> scores;
+  for (int split : {400, 0}) {
+    MaskPropagationOptions o;
+    o.split_min_px = split;
+    MaskPropagator propagator(kCamera, o);
+    propagator.reset({.frame_id = 0, .gray = image(0), .depth = {}, .instances = {both_mask(0)}, .T_cam_world = {}});
+    PropagatedMasks p;
+    for (int k = 1; k <= 6; ++k) p = propagator.propagate(k, image(k), {}, std::nullopt);
+    ASSERT_EQ(p.instances.size(), split > 0 ? 2u : 1u);
+    cv::Mat1b moved(kSize, uchar{0});
+    for (const PropagatedInstance& i : p.instances) cv::bitwise_or(moved, i.mask, moved);
+    scores.push_back(iou(moved, both_mask(6)));
+  }
+  EXPECT_GT(scores[0], 0.9);   // each part followed, 48 px up and down
+  EXPECT_LT(scores[1], 0.75);  // one motion for both
+}
+
 TEST(MaskPropagation, BlobWalkingInFromTheBorderKeepsItsHiddenPart) {
   MovingBlob scene;
   scene.start = {300, 120};  // the right third is outside the frame

@@ -52,7 +52,8 @@ TEST(SegmentationWorker, HoldsAPersonTheSegmenterLost) {
   for (const int hold_frames : {0, 2}) {
     SegmentationWorker worker(std::make_unique<FakeSegmenter>(), {0}, 0, MaskHoldOptions{.frames = hold_frames});
     std::vector<std::future<SegmentationResult>> futures;
-    for (const int v : {5, 100, 100, 100}) futures.push_back(worker.submit(frame(v)));
+    std::size_t index = 0;
+    for (const int v : {5, 100, 100, 100}) futures.push_back(worker.submit(frame(v), index++));
     std::vector<SegmentationResult> r;
     for (auto& f : futures) r.push_back(f.get());
     EXPECT_EQ(cv::countNonZero(r[0].dynamic_mask), 4);

@@ -131,6 +131,20 @@ TEST(AsyncMasks, OrdinaryFramesDoNotWaitForABusySegmenter) {
   EXPECT_FALSE(gate->timed_out);
 }
 
+TEST(AsyncMasks, CarriedMaskGrowthIsCapped) {
+  auto gate = std::make_shared<Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMaskOptions o = options(100, 0, 100);
+  o.grow_px_per_frame = 4;
+  o.max_grow_px = 10;
+  AsyncMasks masks(*stage, o);
+  // Frame 0's 10x10 square at the top-left corner, carried without a
+  // propagator: it grows 4 px per input frame of age until the 10 px cap.
+  std::vector<int> widths;
+  for (std::size_t f : {0, 1, 2, 3, 8, 40}) widths.push_back(cv::countNonZero(masks.mask_for(image(), f).mask.row(0)));
+  EXPECT_EQ(widths, (std::vector<int>{10, 14, 18, 20, 20, 20}));
+}
+
 }  // namespace
 }  // namespace stillslam
 
@@ -158,6 +172,64 @@ TEST(AsyncMasks, CarriedMasksGoThroughThePropagatorWhenGivenTheGreyImage) {
   EXPECT_GT(carried.mask(0, 13), 0);
   EXPECT_EQ(carried.mask(0, 16), 0);
   EXPECT_GT(carried.mask(13, 0), 0);
+}
+
+}  // namespace
+}  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+// One "person", a 10x10 square at (20, 10), found in frame 0 only (the
+// detector then loses it; MaskHold keeps it).
+class FoundOnceSegmenter final : public Segmenter {
+ public:
+  std::vector<Detection> segment(const cv::Mat& bgr) override { return segment_frame(bgr, 0); }
+  std::vector<Detection> segment_frame(const cv::Mat& bgr, std::size_t frame_index) override {
+    if (frame_index != 0) return {};
+    Detection d;
+    d.class_id = 0;
+    d.class_name = "person";
+    d.score = 1.f;
+    d.box = cv::Rect2f(20, 10, 10, 10);
+    d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
+    d.mask(cv::Rect(20, 10, 10, 10)).setTo(255);
+    return {d};
+  }
+};
+
+TEST(AsyncMasks, HeldInstancesMoveWithTheCamera) {
+  SegmentationStage stage(DynamicMaskMaker(std::make_unique<FoundOnceSegmenter>(), {0}, 0,
+                                           MaskHoldOptions{.frames = 10, .grow_px_per_frame = 0}),
+                          false);
+  MaskPropagationOptions camera_only;
+  camera_only.mode = 1;
+  camera_only.margin_px = 0;
+  camera_only.margin_px_per_frame = 0;
+  AsyncMasks masks(stage, options(3, 0, 10), MaskPropagator(MaskPropagationCamera{50, 50, 30, 20}, camera_only), 0);
+  const cv::Mat1b gray(40, 60, uchar(50));
+  const cv::Mat1f depth(40, 60, 1.f);  // everything 1 m away
+  // The camera moves 0.1 m right per frame: the scene moves 5 px left per frame.
+  const auto pose = [](std::size_t f) {
+    Eigen::Isometry3d T_cam_world = Eigen::Isometry3d::Identity();
+    T_cam_world.translation().x() = -0.1 * static_cast<double>(f);
+    return T_cam_world;
+  };
+  FrameMask m;
+  for (std::size_t f = 0; f <= 4; ++f) {
+    m = masks.mask_for(image(), f, gray, depth);
+    if (f < 4) masks.on_tracked(f, pose(f));
+  }
+  // Frame 3 was segmented: the person is lost there and held (MaskHold).
+  ASSERT_TRUE(masks.fresh());
+  EXPECT_EQ(masks.fresh()->frame_index, 3u);
+  ASSERT_EQ(masks.fresh()->held_instances.size(), 1u);
+  EXPECT_EQ(m.input_age, 1);
+  // Frame 4 carries the held square with the camera motion: 5 px left, at x 15..24.
+  EXPECT_EQ(cv::countNonZero(m.mask), 100);
+  EXPECT_EQ(m.mask(15, 15), 255);
+  EXPECT_EQ(m.mask(15, 24), 255);
+  EXPECT_EQ(m.mask(15, 26), 0);
 }
 
 }  // namespace

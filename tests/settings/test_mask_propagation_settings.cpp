@@ -25,7 +25,8 @@ TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
       "b.yaml", kBase + "MaskPropagation.mode: 1\nMaskPropagation.marginPx: 6\nMaskPropagation.marginPxPerFrame: 2.5\n"
                         "MaskPropagation.maxMarginPx: 40\nMaskPropagation.pointsPerInstance: 80\n"
                         "MaskPropagation.lkWindowPx: 21\nMaskPropagation.lkLevels: 4\n"
-                        "MaskPropagation.fbMaxErrorPx: 0\nMaskPropagation.maxDepth: 8\n"));
+                        "MaskPropagation.fbMaxErrorPx: 0\nMaskPropagation.maxDepth: 8\n"
+                        "MaskPropagation.splitMinPx: 0\n"));
   EXPECT_EQ(s.mask_propagation.mode, 1);
   EXPECT_EQ(s.mask_propagation.margin_px, 6);
   EXPECT_DOUBLE_EQ(s.mask_propagation.margin_px_per_frame, 2.5);
@@ -35,11 +36,15 @@ TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
   EXPECT_EQ(s.mask_propagation.lk_levels, 4);
   EXPECT_DOUBLE_EQ(s.mask_propagation.fb_max_error_px, 0);
   EXPECT_DOUBLE_EQ(s.mask_propagation.max_depth_m, 8);
+  EXPECT_EQ(defaults.mask_propagation.split_min_px, 400);
+  EXPECT_EQ(s.mask_propagation.split_min_px, 0);
 }
 
 TEST(MaskPropagationSettings, BadValuesNameTheKey) {
   TempDir dir;
   EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.mode: 3\n").find("MaskPropagation.mode' is 3: must be in [0, 2]"),
+            std::string::npos);
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.splitMinPx: -1\n").find("MaskPropagation.splitMinPx"),
             std::string::npos);
   EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.lkWindowPx: 20\n").find("MaskPropagation.lkWindowPx"),
             std::string::npos);

@@ -23,13 +23,15 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   const Settings s = load_settings(dir.write(
       "a.yaml", kTum + "Segmentation.mode: async\nSegmentation.interval: 5\nSegmentation.maxMaskAge: 12\n"
                        "Segmentation.keyframeMaskAge: 4\nSegmentation.modelledLatency: 2\n"
-                       "Segmentation.urgentInliers: 70\n"));
+                       "Segmentation.urgentInliers: 70\nSegmentation.maxGrowPx: 12\n"));
   EXPECT_EQ(s.segmentation.mode, SegmentationMode::Async);
   EXPECT_EQ(s.segmentation.interval, 5);
   EXPECT_EQ(s.segmentation.max_mask_age, 12);
   EXPECT_EQ(s.segmentation.keyframe_mask_age, 4);
   EXPECT_EQ(s.segmentation.modelled_latency, 2);
   EXPECT_EQ(s.segmentation.urgent_inliers, 70);
+  EXPECT_EQ(d.segmentation.max_grow_px, 30);
+  EXPECT_EQ(s.segmentation.max_grow_px, 12);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -42,6 +44,7 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
       {kTum + "Segmentation.mode: 1\n", "Segmentation.mode", "async"},
       {kTum + "Segmentation.interval: 0\n", "Segmentation.interval", "is 0: must be in [1, 1000]"},
       {kTum + "Segmentation.maxMaskAge: -1\n", "Segmentation.maxMaskAge", "is -1: must be in [0, 1000]"},
+      {kTum + "Segmentation.maxGrowPx: -1\n", "Segmentation.maxGrowPx", "is -1: must be in [0, 1000]"},
       {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
        "must be at most max_mask_age"},
   };

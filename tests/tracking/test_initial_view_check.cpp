@@ -41,6 +41,10 @@ TEST(InitialViewCheck, AcceptsAStaticViewWhole) {
   EXPECT_GT(c.matches, 500);
   EXPECT_EQ(c.moving, 0);
   EXPECT_EQ(std::count(c.keep.begin(), c.keep.end(), true), static_cast<long>(t.first.size()));
+  // The returned motion is the next frame's pose relative to the first (at the origin).
+  const Eigen::Isometry3d truth = test::pose_at(0.02, 0, 1);
+  EXPECT_LT((c.T_next_first.translation() - truth.translation()).norm(), 1e-3);
+  EXPECT_LT(Eigen::AngleAxisd(c.T_next_first.linear().transpose() * truth.linear()).angle(), 1e-3);
 }
 
 TEST(InitialViewCheck, RejectsAViewWhereMuchMovesUnmasked) {

@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+
 #include "stillslam/core/option_check.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
@@ -15,6 +17,7 @@ void AsyncMaskOptions::check() const {
   at_least("SegmentationOptions.max_mask_age", max_mask_age, 0);
   at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
   at_least("AsyncMaskOptions.grow_px_per_frame", grow_px_per_frame, 0);
+  at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", text(modelled_latency),
                       "must be at most max_mask_age (" + text(max_mask_age) + ")");
@@ -26,6 +29,7 @@ AsyncMaskOptions AsyncMaskOptions::from(const SegmentationOptions& segmentation)
   o.interval = segmentation.interval;
   o.max_mask_age = segmentation.max_mask_age;
   o.modelled_latency = segmentation.modelled_latency;
+  o.max_grow_px = segmentation.max_grow_px;
   return o;
 }
 
@@ -70,6 +74,9 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
     fresh.gray = kept->second.gray;
     fresh.depth = kept->second.depth;
     fresh.instances = fresh_->instances;
+    // Instances the segmenter lost (MaskHold) move like the others: with the
+    // camera and their own flow, not left where they were in the image.
+    fresh.instances.insert(fresh.instances.end(), fresh_->held_instances.begin(), fresh_->held_instances.end());
     fresh.T_cam_world = kept->second.T_cam_world;
     propagator_->reset(std::move(fresh));
     reset_from_ = fresh_->frame_index;
@@ -80,14 +87,7 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
   last_propagated_ = frame_index;
   // A disc like the fresh masks' dilation, computed only around the mask
   // (grow_mask), not over the whole frame.
-  cv::Mat1b out = grow_mask(moved.union_mask, dilation_px_);
-  // Instances the segmenter lost (MaskHold) are held as they were, grown.
-  if (!fresh_->held_mask.empty()) {
-    SegmentationResult held;
-    held.dynamic_mask = fresh_->held_mask;
-    cv::bitwise_or(out, carried(held, age), out);
-  }
-  return out;
+  return grow_mask(moved.union_mask, dilation_px_);
 }
 
 bool AsyncMasks::stage_busy() const { return stage_.threaded() ? stage_.busy() : !pending_.empty(); }
@@ -131,7 +131,7 @@ void AsyncMasks::wait_for(std::size_t frame_index) {
 }
 
 cv::Mat1b AsyncMasks::carried(const SegmentationResult& result, int age) const {
-  const int grow = age * options_.grow_px_per_frame;
+  const int grow = std::min(age * options_.grow_px_per_frame, options_.max_grow_px);
   if (age == 0 || grow == 0 || result.dynamic_mask.empty() || cv::countNonZero(result.dynamic_mask) == 0) {
     return result.dynamic_mask;
   }

@@ -11,7 +11,8 @@
 //      so frames --realtime dropped do not age a mask): by the
 //      MaskPropagator (mask_propagation.h: camera motion with depth, then
 //      the instances' own optical flow) when there is one and the frame's
-//      grey image is given, else grown grow_px_per_frame per frame of age;
+//      grey image is given, else grown grow_px_per_frame per input frame of
+//      age, max_grow_px at most;
 //   4. no result yet, or one older than max_mask_age: the frame waits for a
 //      fresh mask (the one in flight if young enough, else its own).
 #include <Eigen/Geometry>
@@ -36,6 +37,7 @@ struct AsyncMaskOptions {
   // Without mask propagation: a carried mask grows this much per frame of
   // age (as MaskHold grows held instances) to cover the people's motion.
   int grow_px_per_frame = 4;
+  int max_grow_px = 30;  // the growth's cap (Segmentation.maxGrowPx)
   void check() const;
   static AsyncMaskOptions from(const SegmentationOptions& segmentation);
 };

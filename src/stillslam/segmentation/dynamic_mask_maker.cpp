@@ -24,11 +24,12 @@ SegmentationResult DynamicMaskMaker::make(const cv::Mat& bgr, std::size_t frame_
   r.detections = segmenter_->segment_frame(bgr, frame_index);
   r.instances = dynamic_instances(r.detections, dynamic_class_ids_, bgr.size());
   r.dynamic_mask = dynamic_mask(r.instances, bgr.size(), dilation_px_);
-  const cv::Mat1b held = hold_.update(r.instances, bgr.size());
-  if (!held.empty()) {
-    r.held_coverage = mask_coverage(held);
-    r.held_mask = held;
-    cv::bitwise_or(r.dynamic_mask, held, r.dynamic_mask);
+  r.held_instances = hold_.update(r.instances, bgr.size(), frame_index);
+  if (!r.held_instances.empty()) {
+    r.held_mask = cv::Mat1b(bgr.size(), uchar{0});
+    for (const cv::Mat1b& h : r.held_instances) cv::bitwise_or(r.held_mask, h, r.held_mask);
+    r.held_coverage = mask_coverage(r.held_mask);
+    cv::bitwise_or(r.dynamic_mask, r.held_mask, r.dynamic_mask);
   }
   r.coverage = mask_coverage(r.dynamic_mask);
   r.time_ms = watch.elapsed_ms();

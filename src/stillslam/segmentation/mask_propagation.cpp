@@ -69,6 +69,31 @@ std::vector<cv::Point2f> features_in(const cv::Mat1b& gray, const cv::Mat1b& mas
   return points;
 }
 
+// The instance as 0/255 masks: its 8-connected parts of at least min_px
+// pixels, then the smaller ones together (the whole instance when min_px is 0).
+std::vector<cv::Mat1b> parts_of(const cv::Mat1b& instance, int min_px) {
+  cv::Mat1b whole;
+  cv::compare(instance, 0, whole, cv::CMP_NE);  // own copy, 0/255
+  const cv::Rect box = cv::boundingRect(whole);
+  if (min_px <= 0 || box.empty()) return {whole};
+  cv::Mat1i labels, stats;
+  cv::Mat1d centroids;
+  const int n = cv::connectedComponentsWithStats(whole(box), labels, stats, centroids, 8, CV_32S);
+  if (n <= 2) return {whole};  // background and one part
+  std::vector<cv::Mat1b> parts;
+  cv::Mat1b rest(whole.size(), uchar{0});
+  for (int label = 1; label < n; ++label) {
+    const bool big = stats(label, cv::CC_STAT_AREA) >= min_px;
+    cv::Mat1b part(whole.size(), uchar{0});
+    cv::Mat1b target = big ? part : rest;
+    cv::Mat1b roi = target(box);
+    roi.setTo(255, labels == label);
+    if (big) parts.push_back(part);
+  }
+  if (cv::countNonZero(rest) > 0) parts.push_back(rest);
+  return parts;
+}
+
 bool in_frame(cv::Point2f p, cv::Size s) { return p.x >= 0 && p.y >= 0 && p.x <= s.width - 1 && p.y <= s.height - 1; }
 
 // The mask moved by the 3x3 map H (pixel of the last frame -> pixel of this
@@ -137,6 +162,7 @@ void MaskPropagationOptions::check() const {
   above("MaskPropagationOptions.ransac_threshold_px", ransac_threshold_px, 0);
   above("MaskPropagationOptions.min_depth_m", min_depth_m, 0);
   above("MaskPropagationOptions.max_depth_m", max_depth_m, min_depth_m);
+  at_least("MaskPropagationOptions.split_min_px", split_min_px, 0);
 }
 
 MaskPropagator::MaskPropagator(const MaskPropagationCamera& camera, MaskPropagationOptions options)
@@ -164,10 +190,14 @@ void MaskPropagator::reset(SegmentedFrame fresh) {
                   size_text(size));
   }
   tracks_.clear();
+  std::vector<cv::Mat1b> parts;
   for (const cv::Mat1b& m : fresh.instances) {
     if (cv::countNonZero(m) == 0) continue;
+    for (cv::Mat1b& part : parts_of(m, options_.split_min_px)) parts.push_back(std::move(part));
+  }
+  for (cv::Mat1b& part : parts) {
     Track t;
-    cv::compare(m, 0, t.mask, cv::CMP_NE);  // own copy, 0/255
+    t.mask = std::move(part);
     if (options_.mode >= 1) t.median_depth = median_depth_in(t.mask, fresh.depth, options_);
     if (options_.mode == 2) {
       t.points = features_in(fresh.gray, t.mask, options_);

@@ -43,6 +43,11 @@ struct MaskPropagationOptions {
   int min_points_similarity = 10;  // from this many tracked points on: RANSAC similarity, else median translation
   double ransac_threshold_px = 2.0;
   double min_depth_m = 0.1, max_depth_m = 20.0;  // depths outside are unknown
+  // An instance's 8-connected parts of at least this many pixels are tracked
+  // apart (the smaller ones together as one more part); 0: each instance whole.
+  // One mask over several people (merged detections, a union of masks) then
+  // follows each person instead of fitting one motion to all.
+  int split_min_px = 400;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -68,7 +73,7 @@ struct PropagatedInstance {
 };
 
 struct PropagatedMasks {
-  std::vector<PropagatedInstance> instances;  // the fresh frame's non-empty instances, in order
+  std::vector<PropagatedInstance> instances;  // the fresh frame's non-empty instances (split into parts: split_min_px), in order
   cv::Mat1b union_mask;  // union of the instances dilated by margin(age); frame-size (zeros when no instance)
   int age = 0;           // frame_id - the fresh frame's id
   int margin_px = 0;

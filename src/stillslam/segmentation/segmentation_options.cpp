@@ -20,6 +20,7 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.keyframe_mask_age", keyframe_mask_age, 0);
   at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
   at_least("SegmentationOptions.urgent_inliers", urgent_inliers, 0);
+  at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", option_check::text(modelled_latency),
                       "must be at most max_mask_age (" + option_check::text(max_mask_age) + ")");

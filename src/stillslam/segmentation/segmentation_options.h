@@ -47,6 +47,10 @@ struct SegmentationOptions {
   // frame k is usable from frame k + this on (the segmenter's time in frames),
   // independent of timing.
   int modelled_latency = 3;
+  // Async: Segmentation.maxGrowPx, a carried mask grows at most this much in
+  // all (without mask propagation, and the held-over instances): growing
+  // without bound, old held masks covered most of the view.
+  int max_grow_px = 30;
   // Async: Segmentation.urgentInliers, a frame tracked with fewer map-point
   // inliers asks for the next segmentation slot. 0: never.
   int urgent_inliers = 50;

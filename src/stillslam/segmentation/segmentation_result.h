@@ -18,7 +18,8 @@ struct SegmentationResult {
   // Fraction of frame pixels held over from instances lost since earlier
   // frames (MaskHold; included in dynamic_mask).
   double held_coverage = 0;
-  cv::Mat1b held_mask;  // those held-over instances (empty: none)
+  cv::Mat1b held_mask;  // union of those held-over instances (empty: none)
+  std::vector<cv::Mat1b> held_instances;  // each of them, frame-size (grown as MaskHold holds them)
   double time_ms = 0;      // segment() + mask building, on the segmenting thread
   double cpu_ms = 0;       // CPU time of that thread for it
 };

@@ -24,6 +24,7 @@ void bind_mask_propagation(const YamlReader& yaml, MaskPropagationOptions& optio
               {0, 100, true});
   keys.number("minDepth", options.min_depth_m, "MaskPropagationOptions.min_depth_m", {0, 1000, true});
   keys.number("maxDepth", options.max_depth_m, "MaskPropagationOptions.max_depth_m", {0, 10000, true});
+  keys.integer("splitMinPx", options.split_min_px, "MaskPropagationOptions.split_min_px", {0, 1000000});
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

@@ -91,6 +91,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("maxMaskAge", options.max_mask_age, "SegmentationOptions.max_mask_age", {0, 1000});
   keys.integer("keyframeMaskAge", options.keyframe_mask_age, "SegmentationOptions.keyframe_mask_age", {0, 1000});
   keys.integer("modelledLatency", options.modelled_latency, "SegmentationOptions.modelled_latency", {0, 1000});
+  keys.integer("maxGrowPx", options.max_grow_px, "SegmentationOptions.max_grow_px", {0, 1000});
   keys.integer("urgentInliers", options.urgent_inliers, "SegmentationOptions.urgent_inliers", {0, 100000});
   keys.flag("freshMaskCull", options.fresh_mask_cull);
   keys.reject_unknown_keys();

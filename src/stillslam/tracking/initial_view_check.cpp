@@ -77,6 +77,7 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
     const Eigen::Vector3d in_next = motion.T_cam_world * camera.unproject(Eigen::Vector2d(p.x, p.y), first.depth(i));
     if (in_next.z() > 0 && in_mask(next.dynamic_mask(), camera.project(in_next))) out.keep[i] = false;
   }
+  out.T_next_first = motion.T_cam_world;
   out.accepted = true;
   return out;
 }

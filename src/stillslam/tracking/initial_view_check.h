@@ -12,7 +12,11 @@
 //    more than max_moving_share of the matches disagree with it, something
 //    unmasked moves, and the first frame is rejected;
 //  - otherwise keypoints whose match disagrees, or whose 3D point lands in
-//    the next frame's dynamic mask, are left out of the first keyframe.
+//    the next frame's dynamic mask, are left out of the first keyframe, and
+//    the PnP motion is returned: the tracker starts the next frame from it,
+//    which works however far apart the frames are (--realtime drops frames).
+#include <Eigen/Geometry>
+
 #include <string>
 #include <vector>
 
@@ -35,6 +39,8 @@ struct InitialViewCheck {
   int matches = 0;         // first-frame keypoints with depth matched in the next frame
   int moving = 0;          // of those, disagreeing with the camera motion
   std::vector<bool> keep;  // per first-frame keypoint: may become a map point
+  // When accepted: the next frame's pose relative to the first (PnP RANSAC).
+  Eigen::Isometry3d T_next_first = Eigen::Isometry3d::Identity();
 };
 
 // Both frames from the same camera; `next` needs no pose.

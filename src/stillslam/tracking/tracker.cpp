@@ -190,6 +190,9 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         const std::vector<bool> keep = std::move(start_keep_);
         start_candidate_.reset();
         initialize(first, keep);
+        // The first frame is at identity: the motion model starts this frame
+        // at the check's PnP motion, however many frames were dropped between.
+        velocity_ = check.T_next_first;
         return Start::FromAnEarlierFrame;
       }
       result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
