@@ -39,8 +39,8 @@ TEST(MotionSettings, SparseViewKeysBind) {
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));
   EXPECT_FALSE(defaults.motion.sparse_view.enabled);
   EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.masked_share, 0.5);
-  EXPECT_EQ(defaults.motion.sparse_view.inliers, 50);
-  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.tracked_weight, 0.5);
+  EXPECT_EQ(defaults.motion.sparse_view.inliers, 100000);
+  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.tracked_weight, 0.2);
   const Settings s = load_settings(dir.write(
       "b.yaml", kBase + "Motion.sparseView: 1\nMotion.sparseViewMaskedShare: 0.6\nMotion.sparseViewInliers: 80\n"
                         "Motion.sparseViewTrackedWeight: 0.3\n"));

@@ -15,8 +15,11 @@ namespace stillslam {
 struct SparseViewOptions {
   bool enabled = false;          // Motion.sparseView
   double masked_share = 0.5;     // a view is sparse when its mask covers at least this share
-  int inliers = 50;              // ...and tracking found fewer map-point inliers than this
-  double tracked_weight = 0.5;   // the tracked pose's share of the blend (1: tracked pose only)
+  // ...and tracking found fewer map-point inliers than this: blended. The
+  // default blends every sparse view (on the crowd render that beat 50:
+  // bench/README.md, issue #19 session 8).
+  int inliers = 100000;
+  double tracked_weight = 0.2;   // the tracked pose's share of the blend (1: tracked pose only)
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
