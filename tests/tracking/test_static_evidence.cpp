@@ -307,10 +307,12 @@ struct MovedClusterFrame {
 TEST(MotionPrior, HoldsThePredictionAgainstAClusterWithEvidence) {
   const MovedClusterFrame scene;
   MotionPriorOptions options;
+  options.sigma_translation = 0;  // off
   bool applied = true;
   const double off = scene.error(options, &applied);
   EXPECT_FALSE(applied);
   options.sigma_translation = 0.001;
+  options.gate = 0;  // always
   const double on = scene.error(options, &applied);
   EXPECT_TRUE(applied);
   std::printf("pose error %.5f m without the prior, %.5f m with sigma 1 mm\n", off, on);
@@ -321,9 +323,11 @@ TEST(MotionPrior, HoldsThePredictionAgainstAClusterWithEvidence) {
 TEST(MotionPrior, GateAppliesThePriorOnlyBeyondItsDistance) {
   const MovedClusterFrame scene;
   MotionPriorOptions options;
+  options.sigma_translation = 0;  // off
   bool applied = false;
   const double off = scene.error(options, &applied);
   options.sigma_translation = 0.001;
+  options.gate = 0;
   const double always = scene.error(options, &applied);
   // The pose without the prior lands `off` from the prediction.
   options.gate = off / 2;
@@ -338,6 +342,9 @@ TEST(MotionPrior, GateAppliesThePriorOnlyBeyondItsDistance) {
 
 TEST(MotionPrior, OffWithoutSigmaAndOptionsAreChecked) {
   MotionPriorOptions options;
+  EXPECT_TRUE(options.enabled());  // on by default: 1 mm, gate 2 cm
+  EXPECT_EQ(options.gate, 0.02);
+  options.sigma_translation = 0;
   EXPECT_FALSE(motion_prior(Eigen::Isometry3d::Identity(), options));
   options.sigma_translation = 0.002;
   options.sigma_rotation = 0.03;
