@@ -342,9 +342,8 @@ TEST(MotionPrior, GateAppliesThePriorOnlyBeyondItsDistance) {
 
 TEST(MotionPrior, OffWithoutSigmaAndOptionsAreChecked) {
   MotionPriorOptions options;
-  EXPECT_TRUE(options.enabled());  // on by default: 1 mm, gate 2 cm
+  EXPECT_FALSE(options.enabled());  // off by default; gate 2 cm when on
   EXPECT_EQ(options.gate, 0.02);
-  options.sigma_translation = 0;
   EXPECT_FALSE(motion_prior(Eigen::Isometry3d::Identity(), options));
   options.sigma_translation = 0.002;
   options.sigma_rotation = 0.03;

@@ -15,12 +15,12 @@
 namespace stillslam {
 
 struct MotionPriorOptions {
-  // Tracking.motionPriorSigma: m, on the camera centre; 0: no prior. On
-  // (1 mm, with the 2 cm gate) by default: on the issue #20 renders with
-  // --no-segmentation wx 0.37 -> 0.008 m (RGB-D), n1 stereo 0.21 -> 0.009 m
-  // (bench/README.md, session 8). Without the gate it lost on n2 (1.63x);
-  // with a 1 cm gate the n2 twin lost 1.15x.
-  double sigma_translation = 0.001;
+  // Tracking.motionPriorSigma: m, on the camera centre; 0: no prior (the
+  // default). With 1 mm and the 2 cm gate it fixes the issue #20 renders with
+  // --no-segmentation (wx 0.37 -> 0.008 m), but together with
+  // LocalMapping.busyModel it lost on the held-out stereo renders (wx21 twin
+  // 1.77x, hs22 with masks 1.25x; bench/README.md, session 8), so it is off.
+  double sigma_translation = 0;
   // Tracking.motionPriorRotationSigma: rad.
   double sigma_rotation = 0.01;
   // Tracking.motionPriorDeadZone: m; camera-centre offsets from the
