@@ -6,19 +6,10 @@
 
 #include "stillslam/features/orb_extractor.h"
 #include "stillslam/tracking/instance_box_features.h"
+#include "common/blurred_noise.h"
 
 namespace stillslam {
 namespace {
-
-cv::Mat texture(int rows, int cols, int seed) {
-  cv::Mat noise(rows, cols, CV_8U);
-  cv::RNG rng(seed);
-  rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
-  cv::Mat img;
-  cv::GaussianBlur(noise, img, cv::Size(0, 0), 1.5);
-  cv::normalize(img, img, 0, 255, cv::NORM_MINMAX);
-  return img;
-}
 
 TEST(InstanceBoxFeatures, BoxesArePaddedClippedAndMergedWhenTheyOverlap) {
   const std::vector<cv::Rect> boxes = {{100, 100, 50, 50}, {170, 100, 50, 50}, {400, 300, 40, 40}, {620, 0, 30, 30}};
@@ -36,7 +27,7 @@ TEST(InstanceBoxFeatures, BoxesArePaddedClippedAndMergedWhenTheyOverlap) {
 }
 
 TEST(InstanceBoxFeatures, FeaturesOnlyOnTheInstancesPixelsAsManyAsAFullFramePass) {
-  const cv::Mat gray = texture(480, 640, 3);
+  const cv::Mat gray = test::blurred_noise(480, 640, 3);
   cv::Mat1b inside = cv::Mat1b::zeros(480, 640);
   const cv::Rect person(60, 80, 140, 300), box(420, 260, 90, 90);
   inside(person).setTo(255);
@@ -75,7 +66,7 @@ TEST(InstanceBoxFeatures, FeaturesOnlyOnTheInstancesPixelsAsManyAsAFullFramePass
 }
 
 TEST(InstanceBoxFeatures, ASmallBoxUsesFewerLevelsAndStillWorks) {
-  const cv::Mat gray = texture(480, 640, 4);
+  const cv::Mat gray = test::blurred_noise(480, 640, 4);
   cv::Mat1b inside = cv::Mat1b::zeros(480, 640);
   inside(cv::Rect(300, 200, 30, 30)).setTo(255);
   const OrbFeatures f =

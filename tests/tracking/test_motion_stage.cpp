@@ -13,6 +13,7 @@
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/motion_stage.h"
+#include "common/blurred_noise.h"
 
 namespace stillslam {
 namespace {
@@ -23,22 +24,12 @@ constexpr int kBoxSpeedPx = 3;  // the box's own motion, pixels per frame
 const cv::Rect kPerson(120, 140, 140, 220);  // in frame 0
 const cv::Rect kBox(420, 200, 110, 110);     // in frame 0
 
-cv::Mat texture(int rows, int cols, int seed) {
-  cv::Mat noise(rows, cols, CV_8U);
-  cv::RNG rng(seed);
-  rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
-  cv::Mat img;
-  cv::GaussianBlur(noise, img, cv::Size(0, 0), 1.5);
-  cv::normalize(img, img, 0, 255, cv::NORM_MINMAX);
-  return img;
-}
-
 cv::Rect person_at(int k) { return kPerson - cv::Point(kShiftPx * k, 0); }
 cv::Rect box_at(int k, bool box_moves) { return kBox - cv::Point(kShiftPx * k - (box_moves ? kBoxSpeedPx * k : 0), 0); }
 
 struct Scene {
-  cv::Mat wall = texture(480, 640 + 200, 1);
-  cv::Mat box = texture(kBox.height, kBox.width, 2);
+  cv::Mat wall = test::blurred_noise(480, 640 + 200, 1);
+  cv::Mat box = test::blurred_noise(kBox.height, kBox.width, 2);
   bool box_moves = true;
   cv::Mat gray(int k) const {
     cv::Mat img = wall(cv::Rect(kShiftPx * k, 0, 640, 480)).clone();
