@@ -1,8 +1,7 @@
 #include "stillslam/tracking/sparse_view.h"
 
-#include <opencv2/core.hpp>
-
 #include "stillslam/core/option_check.h"
+#include "stillslam/segmentation/dynamic_mask.h"
 
 namespace stillslam {
 
@@ -13,11 +12,7 @@ void SparseViewOptions::check() const {
   in_range("SparseViewOptions.tracked_weight", tracked_weight, 0.0, 1.0);
 }
 
-double masked_share(const Frame& frame) {
-  const cv::Mat1b& mask = frame.dynamic_mask();
-  if (mask.empty()) return 0.0;
-  return static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
-}
+double masked_share(const Frame& frame) { return mask_coverage(frame.dynamic_mask()); }
 
 bool is_sparse_view(const Frame& frame, const SparseViewOptions& options) {
   return options.enabled && !frame.dynamic_mask().empty() && masked_share(frame) >= options.masked_share;
