@@ -14,6 +14,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
 #include "stillslam/optimize/reprojection_costs.h"
+#include "stillslam/optimize/schur_bundle_adjuster.h"
 #include "stillslam/optimize/se3_manifold.h"
 
 namespace stillslam {
@@ -116,7 +117,19 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   Se3LeftManifold manifold;
   AbortCallback abort_callback(options);
 
+  SchurBundleAdjuster schur(k, keyframes, observations, stereo);
+
   auto run_pass = [&](bool robust, int iterations) {
+    for (std::size_t i = 0; i < n_obs; ++i) {
+      if (active[i] && !keyframes[observations[i].keyframe].fixed) keyframe_moved[observations[i].keyframe] = true;
+    }
+    if (options.solver == BaSolver::Schur && schur.free_keyframes(active) <= kSchurMaxFreeKeyframes) {
+      const SchurPassResult r = schur.run_pass(poses, xyz, active, robust, iterations, options);
+      result.iterations += r.iterations;
+      if (r.aborted) result.aborted = true;
+      if (r.usable) result.applied_steps += r.applied_steps;
+      return;
+    }
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -138,7 +151,6 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
           problem.SetParameterBlockConstant(pose);
         } else {
           ++free_keyframes;
-          keyframe_moved[o.keyframe] = true;
         }
         ordering->AddElementToGroup(pose, 1);
       }

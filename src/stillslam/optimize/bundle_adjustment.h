@@ -35,6 +35,11 @@ struct BaObservation {
 
 enum class BaLinearSolver { DenseSchur, SparseSchur, IterativeSchur, Auto };
 
+// Ceres, or the hand-written Schur-complement Levenberg-Marquardt of
+// schur_bundle_adjuster.h (same residuals, losses and stopping rules; used
+// up to kSchurMaxFreeKeyframes free keyframes, Ceres above).
+enum class BaSolver { Ceres, Schur };
+
 struct BundleAdjustmentOptions {
   // Levenberg-Marquardt iterations of the first (robust) pass.
   int iterations = 10;
@@ -46,9 +51,11 @@ struct BundleAdjustmentOptions {
   double chi2_mono = kChi2Mono95;
   double chi2_stereo = kChi2Stereo95;
   bool huber = true;
-  // 1 thread is bit-for-bit deterministic; more threads may change rounding.
+  // Ceres: 1 thread is bit-for-bit deterministic; more threads may change
+  // rounding. The Schur solver always runs on the calling thread.
   int num_threads = 1;
-  // Auto: dense Schur up to 40 free keyframes (fastest for local windows,
+  BaSolver solver = BaSolver::Ceres;
+  // Ceres only. Auto: dense Schur up to 40 free keyframes (fastest for local windows,
   // measured in bench/bench_optimize.cpp), sparse Schur (SuiteSparse) above.
   BaLinearSolver linear_solver = BaLinearSolver::Auto;
   // Stereo/RGB-D observations as two 2-row residual blocks (the mono block and
@@ -56,6 +63,8 @@ struct BundleAdjustmentOptions {
   // fixed-size SchurEliminator<2, 3, 6>. false: one 3-row block, which sends
   // any problem with mono and stereo observations (or stereo only: Ceres has
   // no <3, 3, 6>) to the dynamic-size eliminator. bench/README.md has both.
+  // Both solvers: true puts Huber on the (u, v) pair and on the right-image
+  // row apart, false on all three rows together.
   bool split_stereo = true;
   // A pass stops once an iteration lowers the cost by less than this
   // fraction (Ceres' function_tolerance).
@@ -67,7 +76,7 @@ struct BundleAdjustmentOptions {
   // ends it as converged and writes that state back); false leaves the state
   // the pass started from (Ceres' SOLVER_ABORT).
   bool keep_progress_on_abort = false;
-  // Tests: called at every Ceres iteration (0 = the pass's start state),
+  // Tests: called at every solver iteration (0 = the pass's start state),
   // before abort is read.
   std::function<void()> on_iteration;
   // Throws OptionError naming the field, its value and the valid range.
@@ -81,8 +90,8 @@ struct BundleAdjustmentResult {
   double initial_cost = 0;  // 0.5 * sum of squared whitened errors (no robust loss)
   double final_cost = 0;    // same measure, inliers only
   bool aborted = false;  // abort stopped a pass early or kept one from starting
-  int iterations = 0;    // Ceres iterations over all passes
-  // Accepted Ceres steps whose state is in the result (an aborted pass's
+  int iterations = 0;    // solver iterations over all passes (as Ceres counts them)
+  // Accepted solver steps whose state is in the result (an aborted pass's
   // steps only with keep_progress_on_abort): 0 after an abort means the
   // BA's work was discarded.
   int applied_steps = 0;
