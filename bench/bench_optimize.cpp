@@ -5,7 +5,9 @@
 //   build/bench/bench_optimize [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <random>
 #include <vector>
 
@@ -74,8 +76,8 @@ struct BaScene {
 enum class Depth { None = 0, All = 1, TwoThirds = 2 };
 
 // num_kf keyframes on a 1.5 m arc looking at num_points points; the first
-// two keyframes fixed; keyframes/points perturbed, every obs noisy.
-BaScene ba_scene(const PinholeCamera& cam, int num_kf, int num_points, Depth depth) {
+// num_fixed keyframes fixed; keyframes/points perturbed, every obs noisy.
+BaScene ba_scene(const PinholeCamera& cam, int num_kf, int num_points, Depth depth, int num_fixed = 2) {
   std::mt19937 rng(2);
   std::normal_distribution<double> noise(0.0, 1.0), small(0.0, 1.0);
   std::uniform_real_distribution<double> xy(-3, 3), z(3, 8), coin(0, 1);
@@ -85,11 +87,11 @@ BaScene ba_scene(const PinholeCamera& cam, int num_kf, int num_points, Depth dep
     const double a = 1.5 * k / std::max(1, num_kf - 1);
     truth.push_back(pose({a - 0.75, 0.1 * std::sin(3 * a), 0.2 * a}, {0.12 * a, -0.18 * a, 0.01}));
     Eigen::Isometry3d noisy = truth.back();
-    if (k >= 2) {
+    if (k >= num_fixed) {
       noisy.translation() += 0.03 * Eigen::Vector3d(small(rng), small(rng), small(rng));
       noisy.linear() = so3_exp(0.01 * Eigen::Vector3d(small(rng), small(rng), small(rng))) * noisy.linear();
     }
-    s.keyframes.push_back({static_cast<std::uint64_t>(k), noisy, k < 2});
+    s.keyframes.push_back({static_cast<std::uint64_t>(k), noisy, k < num_fixed});
   }
   for (int i = 0; i < num_points; ++i) {
     const Eigen::Vector3d p(xy(rng), xy(rng), z(rng));
@@ -168,6 +170,68 @@ BENCHMARK(BM_LocalBundleAdjustment)
     ->Args({20, 1400, 1, 0, 0, 3})
     ->Args({20, 1400, 1, 0, 1, 3})
 ->Unit(benchmark::kMillisecond);
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Ceres against the hand-written Schur solver (BaSolver) on the same problem,
+// one after the other in every benchmark iteration, with the local mapper's
+// options (5 robust + 10 iterations, function tolerance 1e-4). Counters:
+// median thread-CPU ms per BA of each, their ratio, and the final costs.
+// Args: free keyframes, fixed keyframes, points, depth (as above), split stereo.
+void BM_LocalBaSolvers(benchmark::State& state) {
+  const PinholeCamera cam(calibration(), 40.0);
+  const int num_fixed = static_cast<int>(state.range(1));
+  const BaScene s = ba_scene(cam, static_cast<int>(state.range(0)) + num_fixed, static_cast<int>(state.range(2)),
+                            static_cast<Depth>(state.range(3)), num_fixed);
+  BundleAdjustmentOptions options;
+  options.iterations = 5;
+  options.iterations_after_outliers = 10;
+  options.function_tolerance = 1e-4;
+  options.split_stereo = state.range(4) != 0;
+  std::vector<double> ceres_ms, schur_ms;
+  double ceres_cost = 0, schur_cost = 0;
+  int ceres_iterations = 0, schur_iterations = 0;
+  for (auto _ : state) {
+    for (const BaSolver solver : {BaSolver::Ceres, BaSolver::Schur}) {
+      options.solver = solver;
+      const double t0 = thread_cpu_ms();
+      const BundleAdjustmentResult r = bundle_adjust(cam, s.keyframes, s.points, s.observations, options);
+      const double ms = thread_cpu_ms() - t0;
+      benchmark::DoNotOptimize(r.points);
+      (solver == BaSolver::Ceres ? ceres_ms : schur_ms).push_back(ms);
+      (solver == BaSolver::Ceres ? ceres_cost : schur_cost) = r.final_cost;
+      (solver == BaSolver::Ceres ? ceres_iterations : schur_iterations) = r.iterations;
+    }
+  }
+  state.counters["observations"] = static_cast<double>(s.observations.size());
+  state.counters["ceres_ms"] = median(ceres_ms);
+  state.counters["schur_ms"] = median(schur_ms);
+  state.counters["ratio"] = median(ceres_ms) / median(schur_ms);
+  state.counters["ceres_cost"] = ceres_cost;
+  state.counters["schur_cost"] = schur_cost;
+  state.counters["ceres_it"] = ceres_iterations;
+  state.counters["schur_it"] = schur_iterations;
+}
+BENCHMARK(BM_LocalBaSolvers)
+    // The local mapper's median window on the walking_xyz render (19 free +
+    // 10 fixed keyframes, ~1600 points, ~11300 observations), RGB-D and mixed.
+    ->Args({19, 10, 1600, 1, 1})
+    ->Args({19, 10, 1600, 1, 0})
+    ->Args({19, 10, 1600, 2, 1})
+    ->Args({19, 10, 1600, 0, 1})
+    ->Args({10, 2, 1000, 2, 1})
+    ->Args({40, 10, 3500, 2, 1})
+    ->Iterations(7)
+    ->Unit(benchmark::kMillisecond);
 
 // Global BA as loop closing runs it (LoopCloserOptions::
 // default_global_bundle_adjustment: 10 robust iterations, no outlier pass,

@@ -111,6 +111,7 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.relocMinInliers", "1e6", "is 1000000: must be in [1, 50000]"},
     // LocalMapping.*
     {"LocalMapping.baThreads", "0", "is 0: must be in [1, "},
+    {"LocalMapping.baSolver", "cholmod", "must be schur (the hand-written Schur-complement solver) or ceres"},
     {"LocalMapping.busyModelKeyframeMs", "-1", "is -1: must be in [0, 10000]"},
     {"LocalMapping.busyModelObservationUs", "2000", "is 2000: must be in [0, 1000]"},
     {"LocalMapping.busyModelObservationIterationUs", "-0.5", "is -0.5: must be in [0, 1000]"},

@@ -214,9 +214,10 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
                            "LocalMapping.baKeepInterrupted: 0\nLocalMapping.baIterationsBeforeInterrupt: 3\n"
                            "LocalMapping.busyModel: 0\nLocalMapping.busyModelThreaded: 1\n"
                            "LocalMapping.busyModelKeyframeMs: 15\nLocalMapping.busyModelObservationUs: 4\n"
-                           "LocalMapping.busyModelObservationIterationUs: 0.5\n";
+                           "LocalMapping.busyModelObservationIterationUs: 0.5\nLocalMapping.baSolver: ceres\n";
   const Settings s = load_settings(dir.write("m.yaml", text));
   const LocalMapperOptions& m = s.local_mapping;
+  EXPECT_EQ(m.bundle_adjustment.solver, BaSolver::Ceres);
   EXPECT_TRUE(m.bundle_adjustment.split_stereo);
   EXPECT_DOUBLE_EQ(m.bundle_adjustment.function_tolerance, 1e-5);
   EXPECT_DOUBLE_EQ(m.bundle_adjustment.max_seconds_per_pass, 0.5);

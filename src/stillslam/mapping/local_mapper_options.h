@@ -59,6 +59,9 @@ struct LocalMapperOptions {
     o.function_tolerance = 1e-4;
     // An interrupted BA keeps what it reached (ORB-SLAM does too).
     o.keep_progress_on_abort = true;
+    // The hand-written Schur solver: the same answers as Ceres at a fraction
+    // of the CPU (bench/README.md, "Issue #21, session 9").
+    o.solver = BaSolver::Schur;
     // Stereo/RGB-D observations stay split into 2-row blocks: one 3-row block
     // is 13-24 % cheaper per BA but lost accuracy on the held-out renders
     // (bench/README.md, "Lead, session 6": 1.28x and 1.19x ATE).

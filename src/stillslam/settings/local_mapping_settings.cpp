@@ -1,17 +1,32 @@
+#include <string>
+
 #include "stillslam/settings/section_binders.h"
 #include "stillslam/settings/section_keys.h"
 
 namespace stillslam {
+namespace {
+
+BaSolver read_ba_solver(SectionKeys& keys, BaSolver current) {
+  const cv::FileNode n = keys.node("baSolver");
+  if (n.isNone()) return current;
+  const std::string value = n.isString() ? static_cast<std::string>(n) : std::string();
+  if (value == "schur") return BaSolver::Schur;
+  if (value == "ceres") return BaSolver::Ceres;
+  keys.fail("baSolver", "must be schur (the hand-written Schur-complement solver) or ceres");
+}
+
+}  // namespace
 
 void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   SectionKeys keys(yaml, "LocalMapping", true);
-  // Local bundle adjustment (Ceres).
+  // Local bundle adjustment.
   keys.flag("bundleAdjustment", options.enable_bundle_adjustment);
   BundleAdjustmentOptions& ba = options.bundle_adjustment;
   keys.integer("baThreads", ba.num_threads, "BundleAdjustmentOptions.num_threads", thread_limits(1));
   keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations", {1, 1000});
   keys.integer("baIterationsAfterOutliers", ba.iterations_after_outliers,
                "BundleAdjustmentOptions.iterations_after_outliers", {0, 1000});
+  ba.solver = read_ba_solver(keys, ba.solver);
   keys.flag("baSplitStereo", ba.split_stereo);
   keys.number("baFunctionTolerance", ba.function_tolerance, "BundleAdjustmentOptions.function_tolerance", {0, 1});
   keys.number("baMaxSeconds", ba.max_seconds_per_pass, "BundleAdjustmentOptions.max_seconds_per_pass", {0, 60});
