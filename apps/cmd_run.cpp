@@ -56,6 +56,8 @@ struct RunArgs {
   std::string config, input, output, groundtruth, vocabulary;
   bool no_segmentation = false, realtime = false, deterministic = false, no_loop_closing = false;
   bool raw_trajectory = false;
+  bool preload = false;
+  std::size_t preload_limit_mb = kDefaultPreloadLimitMb;
   bool skip_bad_frames = false;
   std::string save_frames;  // --save-frames DIR
   int save_frames_every = 1;
@@ -131,6 +133,7 @@ void run(const RunArgs& args) {
   options.system.localization_only = args.localization;
   options.save_map = args.save_map;
   options.realtime = args.realtime;
+  if (args.preload) options.preload_max_bytes = args.preload_limit_mb << 20;
   if (args.max_frames > 0) options.max_frames = args.max_frames;
   options.stop = &signals.stop();
   const std::unique_ptr<RunViewer> viewer = start_run_viewer(args.viewer, settings, options, find_groundtruth(args));
@@ -251,6 +254,13 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--no-segmentation", args->no_segmentation, "same pipeline without dynamic masks (baseline)");
   cmd->add_option("--max-frames", args->max_frames, "process at most N frames");
   cmd->add_flag("--realtime", args->realtime, "pace frames by timestamps, dropping late ones");
+  cmd->add_flag("--preload", args->preload,
+                "decode every frame into memory before the run starts, so --realtime does not pay decoding the "
+                "dataset's image files (a camera delivers pixels); stats.json: summary.preload");
+  cmd->add_option("--preload-limit-mb", args->preload_limit_mb,
+                  "with --preload: refuse (before decoding them all) when the frames need more memory than this")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--skip-bad-frames", args->skip_bad_frames,
                 "go on past a missing or unreadable frame (a warning names each; stats.json counts them in "
                 "summary.skipped_frames) instead of ending the run there");

@@ -10,8 +10,11 @@
 //       [--oracle-masks DIR [--mask-miss-rate R] [--mask-miss-burst S] [--mask-miss-seed N]]
 //       [--trajectory OUT] [--keyframe-trajectory OUT]
 //       [--realtime] [--segmenter-cost-ms MS] [--variants off,sync,async [--runs N]]
+//       [--preload [--preload-limit-mb MB]]
 //
 // --realtime: frames paced by their timestamps, late ones dropped (as live).
+// --preload: every frame decoded into memory before each run's clock starts
+// (a camera delivers pixels; PNG decoding is not the system's cost).
 // --segmenter-cost-ms: with --oracle-masks, each segmentation first burns
 // this much CPU time (the measured YOLO CPU per frame), so asynchronous
 // timing is realistic without the model.
@@ -72,6 +75,8 @@ struct Args {
   std::size_t max_frames = 0;
   int opencv_threads = -1;
   bool realtime = false;
+  bool preload = false;
+  std::size_t preload_limit_mb = kDefaultPreloadLimitMb;
   double segmenter_cost_ms = 0;
   std::vector<std::string> variants;
   int runs = 1;
@@ -98,6 +103,10 @@ Args parse(int argc, char** argv) {
   app.add_option("--mask-miss-seed", a.misses.seed, "seed of the missed frames")->capture_default_str();
   app.add_flag("--no-segmentation", a.no_segmentation, "run without the segmentation front end");
   app.add_flag("--realtime", a.realtime, "pace frames by their timestamps, drop late ones");
+  app.add_flag("--preload", a.preload, "decode every frame into memory before the run's clock starts");
+  app.add_option("--preload-limit-mb", a.preload_limit_mb, "with --preload: refuse when the frames need more")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--segmenter-cost-ms", a.segmenter_cost_ms, "with --oracle-masks: CPU ms each segmentation burns")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--variants", a.variants, "compare these in one run: off, sync, async (comma separated)")
@@ -108,7 +117,8 @@ Args parse(int argc, char** argv) {
   app.add_flag("--raw-trajectory", a.raw_trajectory, "the tracked poses, not re-estimated against the final map");
   app.add_flag("--check-determinism", a.check_determinism, "run the deterministic mode twice and compare");
   app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
-  app.add_option("--opencv-threads", a.opencv_threads, "cv::setNumThreads (-1: OpenCV's default)")
+  app.add_option("--opencv-threads", a.opencv_threads,
+                 "cv::setNumThreads (-1: the settings' Segmentation.threads, as stillslam run)")
       ->capture_default_str();
   try {
     app.parse(argc, argv);
@@ -143,6 +153,7 @@ RunResult run_once(const Settings& settings, const Dataset& dataset, const Args&
     throw Error("--segmenter-cost-ms needs --oracle-masks DIR (YOLO costs what it costs)");
   }
   options.realtime = a.realtime;
+  if (a.preload) options.preload_max_bytes = a.preload_limit_mb << 20;
   options.system.deterministic = deterministic;
   options.system.trajectory_refinement.enabled = !a.raw_trajectory;
   if (a.max_frames > 0) options.max_frames = a.max_frames;
@@ -276,8 +287,13 @@ int bench_variants(const Args& a, const Settings& settings, const Dataset& datas
 }
 
 int bench(const Args& a) {
-  if (a.opencv_threads >= 0) cv::setNumThreads(a.opencv_threads);
   const Settings settings = load_settings(a.config);
+  // The pool size stillslam run uses (apps/opencv_threads.h), unless given.
+  if (a.opencv_threads >= 0) {
+    cv::setNumThreads(a.opencv_threads);
+  } else if (settings.segmentation.threads > 0) {
+    cv::setNumThreads(settings.segmentation.threads);
+  }
   const auto dataset = open_dataset(a.input, settings);
   if (!a.variants.empty()) return bench_variants(a, settings, *dataset);
   const RunResult r = run_once(settings, *dataset, a, a.deterministic);

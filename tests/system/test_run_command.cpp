@@ -158,5 +158,41 @@ TEST(RunCommand, SkipBadFramesGoesOnPastAMissingFrame) {
   fs::remove_all(dir);
 }
 
+// --preload: the frames decoded before the run give the same trajectory bit
+// for bit; a bound smaller than the frames is refused naming the option.
+TEST(RunCommand, PreloadGivesTheSameTrajectoryAndRefusesOverTheBound) {
+  const fs::path binary(STILLSLAM_BINARY);
+  if (!fs::exists(binary)) GTEST_SKIP() << "build the stillslam binary first (" << binary << ")";
+  const fs::path dir = fs::temp_directory_path() / "stillslam_test_run_preload";
+  fs::remove_all(dir);
+  const sim::SequenceSummary seq = write_small_sequence(dir, 20, false);
+  const std::string base = binary.string() + " run --config " + seq.settings.string() + " --input " +
+                           (dir / "seq").string() + " --no-segmentation --deterministic --vocabulary none";
+  auto run = [&](const std::string& name, const std::string& flags) {
+    const std::string cmd = base + " " + flags + " --output " + (dir / name).string() + " > " +
+                            (dir / (name + ".log")).string() + " 2>&1";
+    return std::system(cmd.c_str());
+  };
+  ASSERT_EQ(run("plain", ""), 0) << read_text(dir / "plain.log");
+  ASSERT_EQ(run("preloaded", "--preload"), 0) << read_text(dir / "preloaded.log");
+  const std::string plain = read_text(dir / "plain" / "trajectory.txt");
+  EXPECT_EQ(count_lines(dir / "plain" / "trajectory.txt"), 20u);
+  EXPECT_EQ(read_text(dir / "preloaded" / "trajectory.txt"), plain);
+  std::ifstream stats_file(dir / "preloaded" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["summary"]["preload"]["frames"].get<std::size_t>(), 20u);
+  // 400x300 RGB-D: colour 3 + gray 1 + depth 4 bytes a pixel.
+  EXPECT_EQ(stats["summary"]["preload"]["bytes"].get<std::size_t>(), 20u * 400 * 300 * 8);
+  std::ifstream plain_stats_file(dir / "plain" / "stats.json");
+  EXPECT_FALSE(nlohmann::json::parse(plain_stats_file)["summary"].contains("preload"));
+
+  EXPECT_NE(run("bounded", "--preload --preload-limit-mb 10"), 0);  // 20 frames take ~18.3 MB
+  const std::string log = read_text(dir / "bounded.log");
+  EXPECT_NE(log.find("preloading 20 frames needs about 19 MB, more than the limit of 10 MB"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("--preload-limit-mb"), std::string::npos) << log;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace stillslam

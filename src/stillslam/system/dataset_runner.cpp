@@ -7,6 +7,7 @@
 #include "stillslam/core/error.h"
 #include "stillslam/core/scope_exit.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/io/preloaded_dataset.h"
 #include "stillslam/system/process_cpu_time.h"
 
 namespace stillslam {
@@ -36,13 +37,22 @@ void collect_system_results(const System& system, RunResult& out) {
   out.merges = system.merges();
 }
 
-RunResult run_dataset(const Settings& settings, const Dataset& dataset, const RunOptions& options) {
+RunResult run_dataset(const Settings& settings, const Dataset& source, const RunOptions& options) {
   RunResult out;
   Stopwatch wall;
-  System system(settings, dataset.sensor(), dataset.rectified_stereo(), options.system);
-  const std::size_t first = std::min(options.first_frame, dataset.size());
-  std::size_t n = dataset.size();
+  const std::size_t first = std::min(options.first_frame, source.size());
+  std::size_t n = source.size();
   if (options.max_frames) n = std::min(n, first + *options.max_frames);
+  std::optional<PreloadedDataset> preloaded;
+  if (options.preload_max_bytes) {
+    Stopwatch decode;
+    preloaded.emplace(source, first, n, *options.preload_max_bytes);
+    out.preload_seconds = decode.elapsed_ms() / 1000.0;
+    out.preloaded_frames = preloaded->frames();
+    out.preloaded_bytes = preloaded->bytes();
+  }
+  const Dataset& dataset = preloaded ? static_cast<const Dataset&>(*preloaded) : source;
+  System system(settings, dataset.sensor(), dataset.rectified_stereo(), options.system);
 
   std::optional<ProgressReporter> progress;
   if (options.progress) {
@@ -132,7 +142,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& dataset, const Ru
     }
   }
   collect_system_results(system, out);
-  out.skipped_frames = dataset.skipped_frames();
+  out.skipped_frames = source.skipped_frames();
   out.frames_in_input = dataset.size();
   if (out.error) {
     out.end = RunEnd::InputError;

@@ -11,6 +11,11 @@ nlohmann::json run_result_json(const RunResult& result, const std::vector<std::s
   summary["wall_seconds"] = result.wall_seconds;
   summary["dropped_frames"] = result.dropped_frames;
   summary["skipped_frames"] = result.skipped_frames;
+  if (result.preloaded_frames > 0) {
+    summary["preload"] = {{"frames", result.preloaded_frames},
+                          {"bytes", result.preloaded_bytes},
+                          {"seconds", result.preload_seconds}};
+  }
   summary["interrupted"] = result.interrupted;
   summary["keyframes_in_map"] = result.keyframes.size();
   summary["map_points"] = result.map_points;
