@@ -333,6 +333,7 @@ TEST(SettingsSections, BadValuesNameFileKeyValueAndRange) {
       {base + "LocalMapping.baThreads: 0\n", "LocalMapping.baThreads", "is 0: must be in [1, "},
       {base + "LocalMapping.keyframeRedundancy: 0\n", "LocalMapping.keyframeRedundancy", "is 0: must be in (0, 1]"},
       {base + "LocalMapping.bundleAdjustment: 2\n", "LocalMapping.bundleAdjustment", "must be 0 or 1"},
+      {base + "Tracking.motionPriorRefit: 2\n", "Tracking.motionPriorRefit", "must be 0 or 1"},
       {base + "LoopClosing.baThreads: 0\n", "LoopClosing.baThreads", "is 0: must be in [1, "},
       {base + "LoopClosing.minInliers: 0\n", "LoopClosing.minInliers", "is 0: must be in [1, 50000]"},
       {base + "LoopClosing.mergeMinInliers: -1\n", "LoopClosing.mergeMinInliers", "is -1: must be in [1, 50000]"},

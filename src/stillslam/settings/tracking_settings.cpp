@@ -61,6 +61,7 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
               {0, 10, true});
   keys.number("motionPriorDeadZone", tracker.motion_prior.dead_zone, "MotionPriorOptions.dead_zone", {0, 10});
   keys.number("motionPriorGate", tracker.motion_prior.gate, "MotionPriorOptions.gate", {0, 10});
+  keys.flag("motionPriorRefit", tracker.motion_prior.refit);
   keys.check([&] { tracker.check(); });
   // Relocalization.
   keys.integer("relocMinBowMatches", relocalizer.min_bow_matches, "RelocalizerOptions.min_bow_matches", {1, 50000});

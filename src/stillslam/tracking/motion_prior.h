@@ -32,6 +32,14 @@ struct MotionPriorOptions {
   // A constant-velocity prediction at 30 Hz is off by a few mm on a hand-held
   // path; a capture jumps centimetres in one frame.
   double gate = 0.02;
+  // Tracking.motionPriorRefit: with the gate, the pose with the prior is kept
+  // only when the points it keeps as inliers, fitted again without the
+  // prior, stay within the gate of the prediction: the pose left the
+  // prediction because of the points the prior rejects (a thing that moves),
+  // not because the points as a whole disagree with it. On stereo the raw
+  // frame poses jitter by mm, and a constant-velocity prediction from two of
+  // them lands 2-4 cm off on static scenes (bench/README.md, session 9).
+  bool refit = false;
   bool enabled() const { return sigma_translation > 0; }
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
@@ -41,11 +49,24 @@ struct MotionPriorOptions {
 // nullopt when the options are off.
 std::optional<PosePrior> motion_prior(const Eigen::Isometry3d& predicted, const MotionPriorOptions& options);
 
+// What the prior did in one pose stage (for stats.json and the benches).
+struct MotionPriorStep {
+  bool applied = false;  // the returned pose used the prior
+  // m: camera centre of the pose without the prior from the prediction
+  // (-1 when the gate did not look: no prior, or gate 0).
+  double offset = -1;
+  // Share of the inliers of the pose without the prior that the pose with it
+  // rejects (-1: the prior pose was not computed).
+  double rejected_share = -1;
+  // m: camera centre of the refit from the prediction (-1: no refit).
+  double refit_offset = -1;
+};
+
 // refine_pose_on_evidence (static_evidence.h) with the prior and its gate;
-// without a prior it is refine_pose_on_evidence. `applied` (optional) tells
-// whether the returned pose used the prior. Returns the number of inliers.
+// without a prior it is refine_pose_on_evidence. `step` (optional) tells
+// what the gate saw. Returns the number of inliers.
 int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& evidence,
                            const std::optional<PosePrior>& prior, const MotionPriorOptions& options,
-                           bool* applied = nullptr);
+                           MotionPriorStep* step = nullptr);
 
 }  // namespace stillslam

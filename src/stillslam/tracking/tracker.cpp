@@ -283,7 +283,7 @@ bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
     motion_prior_.reset();
     return false;
   }
-  refine_stage_pose(frame);
+  refine_stage_pose(frame, result);
   if (options_.probe) options_.probe(TrackingStage::MotionModel, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
@@ -379,7 +379,7 @@ bool Tracker::track_local_map(Frame& frame, TrackingResult& result) {
   const bool recovering = was_lost_ && frame.id() < last_lost_frame_id_ + 2;
   search_points(frame, local.points, recovering ? 5.f : options_.local_map_search_th);
   result.matches = frame.num_matches();
-  refine_stage_pose(frame);
+  refine_stage_pose(frame, result);
   if (options_.probe) options_.probe(TrackingStage::LocalMap, frame, *map_);
   int inliers = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -419,8 +419,15 @@ void Tracker::cull_outlier_streaks(const Frame& frame, int inliers) {
   }
 }
 
-int Tracker::refine_stage_pose(Frame& frame) {
-  return refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior);
+int Tracker::refine_stage_pose(Frame& frame, TrackingResult& result) {
+  MotionPriorStep step;
+  const int inliers =
+      refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior, &step);
+  result.motion_prior_applied += step.applied ? 1 : 0;
+  result.motion_prior_offset = std::max(result.motion_prior_offset, step.offset);
+  result.motion_prior_rejected = std::max(result.motion_prior_rejected, step.rejected_share);
+  result.motion_prior_refit_offset = std::max(result.motion_prior_refit_offset, step.refit_offset);
+  return inliers;
 }
 
 bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
