@@ -24,6 +24,20 @@ TEST(InstancePlaces, MatchesTheNearestOfItsClassWithinTheRadius) {
   EXPECT_EQ(places.match("person", Eigen::Vector3d(3.8, 0, 0), {}), 5u);
 }
 
+// A person seen whole, then only its head at the image border: a new id
+// seen later by its feet matches the whole view's place, not the head's.
+TEST(InstancePlaces, MatchesWhereItWasSeenMostCompletely) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d whole(0, 0, 0.6), head(0, 0, 1.1), feet(0.1, 0, 0.2);
+  places.seen(3, "person", 0, &whole, 9000);
+  places.seen(3, "person", 1, &head, 800);
+  EXPECT_EQ(places.match("person", feet, {}), 3u);  // 0.41 m from the whole view, 0.9 m from the head
+  EXPECT_EQ(places.match("person", head, {}), 3u);
+  InstancePlaces last_only(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  last_only.seen(3, "person", 1, &head, 800);
+  EXPECT_EQ(last_only.match("person", feet, {}), 0u);
+}
+
 TEST(InstancePlaces, ForgetsPlacesNotSeenForMemoryFrames) {
   InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
   const Eigen::Vector3d p(0, 0, 1);

@@ -1,5 +1,7 @@
 #include "stillslam/tracking/instance_places.h"
 
+#include <algorithm>
+
 #include "stillslam/core/option_check.h"
 
 namespace stillslam {
@@ -13,13 +15,17 @@ void InstancePlacesOptions::check() const {
 InstancePlaces::InstancePlaces(InstancePlacesOptions options) : options_(options) { options_.check(); }
 
 void InstancePlaces::seen(std::uint32_t id, const std::string& category, std::int64_t frame,
-                          const Eigen::Vector3d* p_world) {
+                          const Eigen::Vector3d* p_world, int pixels) {
   Place& p = places_[id];
   p.category = category;
   p.last_frame = frame;
   if (p_world) {
     p.known = true;
     p.p_world = *p_world;
+    if (pixels > p.most_pixels) {
+      p.most_pixels = pixels;
+      p.p_most = *p_world;
+    }
   }
 }
 
@@ -30,7 +36,7 @@ std::uint32_t InstancePlaces::match(const std::string& category, const Eigen::Ve
   double best_d = options_.radius_m;
   for (const auto& [id, p] : places_) {
     if (!p.known || p.category != category || present.count(id)) continue;
-    const double d = (p.p_world - p_world).norm();
+    const double d = std::min((p.p_world - p_world).norm(), (p.p_most - p_world).norm());
     if (d <= best_d) {
       best_d = d;
       best = id;

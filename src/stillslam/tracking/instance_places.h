@@ -28,10 +28,15 @@ class InstancePlaces {
   explicit InstancePlaces(InstancePlacesOptions options = {});
 
   // Instance `id` of `category` is in judged frame `frame`, at `p_world`
-  // when its place is known (else only its last frame is kept).
-  void seen(std::uint32_t id, const std::string& category, std::int64_t frame, const Eigen::Vector3d* p_world);
+  // when its place is known (else only its last frame is kept), seen on
+  // `pixels` pixels.
+  void seen(std::uint32_t id, const std::string& category, std::int64_t frame, const Eigen::Vector3d* p_world,
+            int pixels = 0);
   // The remembered instance of `category` nearest to `p_world` within the
-  // radius, not one of `present` (those in this frame); 0 when none.
+  // radius, not one of `present` (those in this frame); 0 when none. Each
+  // instance is where it was last seen and where it was seen on the most
+  // pixels (its most complete view: a part seen at the image border has its
+  // centre off the instance's).
   std::uint32_t match(const std::string& category, const Eigen::Vector3d& p_world,
                       const std::set<std::uint32_t>& present) const;
   // Drops the instances not seen for memory_frames before `frame`; returns their ids.
@@ -45,6 +50,8 @@ class InstancePlaces {
     std::int64_t last_frame = 0;
     bool known = false;
     Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+    int most_pixels = -1;
+    Eigen::Vector3d p_most = Eigen::Vector3d::Zero();  // where it was seen on the most pixels
   };
   InstancePlacesOptions options_;
   std::map<std::uint32_t, Place> places_;

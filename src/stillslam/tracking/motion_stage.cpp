@@ -126,6 +126,7 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
   // the centroid's ray at the median depth (known from its first frame on,
   // features or not).
   mask_points_.clear();
+  mask_pixels_.clear();
   if (!depth.empty()) {
     std::map<std::uint32_t, std::vector<double>> depths;
     std::map<std::uint32_t, Eigen::Vector3d> sums;  // u, v, count
@@ -144,6 +145,7 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
       const cv::KeyPoint centre(static_cast<float>(s.x() / s.z()), static_cast<float>(s.y() / s.z()), 1.f);
       const cv::Point2f c = camera_.undistort(std::vector<cv::KeyPoint>{centre}).front().pt;
       mask_points_[id] = camera_.unproject(Eigen::Vector2d(c.x, c.y), median_of(z));
+      mask_pixels_[id] = static_cast<int>(4 * s.z());
     }
   }
   for (std::uint32_t id : dynamic_ids_) stats.static_instances += check_.is_static(id);
@@ -231,6 +233,10 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
         labels_.setTo(static_cast<int>(earlier), here);
         categories_.erase(id);
         categories_[earlier] = category;
+        if (const auto m = mask_pixels_.find(id); m != mask_pixels_.end()) {
+          mask_pixels_[earlier] = m->second;
+          mask_pixels_.erase(id);
+        }
         stable_of_.erase(id);
         stable_of_[earlier] = stable;
         if (dynamic_ids_.erase(id)) dynamic_ids_.insert(earlier);
@@ -240,7 +246,8 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
       }
     }
     ++age;
-    places_.seen(id, category, judged_, place ? &*place : nullptr);
+    const auto area = mask_pixels_.find(id);
+    places_.seen(id, category, judged_, place ? &*place : nullptr, area != mask_pixels_.end() ? area->second : 0);
   }
   for (std::uint32_t gone : places_.expire(judged_)) {
     check_.forget(gone);

@@ -98,6 +98,7 @@ class MotionStage {
   cv::Mat1b watched_;                    // pixels of the unmasked objects (options_.watch_objects)
   std::set<std::uint32_t> watched_ids_;
   std::map<std::uint32_t, Eigen::Vector3d> mask_points_;  // camera frame, from the depth image (collect())
+  std::map<std::uint32_t, int> mask_pixels_;              // pixels with depth of each instance
   MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
 };
 
