@@ -23,8 +23,8 @@ struct MotionOptions {
   double min_iou = 0.3;    // mask overlap for an instance to keep its id across segmentations
   // An object (not of a dynamic class) disagrees above max(factor x the
   // background's median residual, floor): lower than a person's 3x / 3 px.
-  double object_moving_factor = 3.0;
-  double object_moving_floor_px = 3.0;
+  double object_moving_factor = 2.0;
+  double object_moving_floor_px = 2.0;
   // A new instance within this distance (world frame) of where one of its
   // class was last seen takes over its evidence (instance_places.h); 0: never.
   double place_radius_m = 0.5;
