@@ -72,13 +72,18 @@ struct StageRun {
   // Each frame's keypoints get fresh map points before the check: those it
   // flagged as seen on a person (on the person's region, elsewhere), and culled.
   std::vector<int> flagged_on_person, flagged_elsewhere, culled;
+  std::vector<int> watched_features;  // the stage's own features on the unmasked box
 };
 
-StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1) {
+// frame_features: the frames' ORB budget.
+StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1,
+                   int frame_features = OrbOptions{}.n_features) {
+  OrbOptions frame_orb;
+  frame_orb.n_features = frame_features;
   const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
   const auto setup = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 3.0);
   SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves, hide_from, hide_to), {0}, 0);
-  FrameBuilder builder(setup, SensorType::Rgbd, OrbOptions{}, &worker);
+  FrameBuilder builder(setup, SensorType::Rgbd, frame_orb, &worker);
   options.enabled = true;
   MotionStage stage(setup->camera, OrbOptions{}, {0}, 0, options);
   builder.set_motion_stage(&stage);
@@ -94,6 +99,7 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
     in.name = "frame " + std::to_string(k);
     FrameBuildStats stats;
     Frame frame = builder.build(in, static_cast<std::uint64_t>(k), &stats);
+    out.watched_features.push_back(stage.watched_features());
     // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
     Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
     T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
@@ -180,6 +186,22 @@ TEST(MotionStage, StillPersonBackUnderANewIdKeepsItsEvidence) {
   o.place_radius_m = 0;
   const StageRun without = run_scene(kFrames, false, o, kHideFrom, kBack);
   for (int k = kBack; k <= kBack + o.person_frames; ++k) EXPECT_EQ(without.masked_share_person[k], 1.0) << k;
+}
+
+// Motion.watchObjects: the unmasked box gets features of its own for the
+// check (from the instance budget, the frame's being spread over the whole
+// view); without it, none until it is masked.
+TEST(MotionStage, UnmaskedObjectsGetFeaturesOfTheirOwn) {
+  MotionOptions o;
+  const StageRun with = run_scene(3, false, o);
+  o.watch_objects = false;
+  const StageRun without = run_scene(3, false, o);
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_GT(with.watched_features[k], 40);  // at least half an equal share of 200, less the box's border
+    EXPECT_EQ(without.watched_features[k], 0);
+    EXPECT_EQ(with.masked_share_box[k], 0.0);  // watched, not masked
+  }
 }
 
 TEST(MotionStage, StillBoxStaysUnmasked) {

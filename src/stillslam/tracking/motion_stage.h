@@ -64,6 +64,12 @@ class MotionStage {
 
   bool is_static(std::uint32_t id) const { return check_.is_static(id); }
   bool is_moving(std::uint32_t id) const { return moving_.count(id) > 0; }
+  // This frame's features of its own on unmasked objects (Motion.watchObjects), after collect().
+  int watched_features() const {
+    int n = 0;
+    for (std::uint32_t id : inside_.instance) n += watched_ids_.count(id) > 0;
+    return n;
+  }
   void reset();
 
  private:
