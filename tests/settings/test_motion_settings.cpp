@@ -34,6 +34,30 @@ TEST(MotionSettings, KeysBindAndDefaultsStay) {
   EXPECT_EQ(s.motion.check_options().evidence.frames_for("chair"), 5);
 }
 
+// Session 9 keys: objects' own moving bar, features of unmasked objects,
+// places of instances that come back under a new id.
+TEST(MotionSettings, ObjectAndPlaceKeysBind) {
+  TempDir dir;
+  const Settings defaults = load_settings(dir.write("a.yaml", kBase));
+  EXPECT_TRUE(defaults.motion.watch_objects);
+  EXPECT_DOUBLE_EQ(defaults.motion.place_radius_m, MotionOptions{}.place_radius_m);
+  const Settings s = load_settings(dir.write(
+      "b.yaml", kBase + "Motion.watchObjects: 0\nMotion.objectMovingFactor: 2.5\nMotion.objectMovingFloorPx: 2\n"
+                        "Motion.placeRadius: 0.3\nMotion.placeMemoryFrames: 90\n"));
+  EXPECT_FALSE(s.motion.watch_objects);
+  EXPECT_DOUBLE_EQ(s.motion.check_options().evidence.object_moving_factor, 2.5);
+  EXPECT_DOUBLE_EQ(s.motion.check_options().evidence.object_moving_floor_px, 2.0);
+  EXPECT_DOUBLE_EQ(s.motion.places_options().radius_m, 0.3);
+  EXPECT_EQ(s.motion.places_options().memory_frames, 90);
+  // Below the agreeing bar (2x, 1.5 px) an object could agree and disagree at once.
+  const std::string e = test::settings_error(dir, kBase + "Motion.objectMovingFactor: 1.5\n");
+  EXPECT_NE(e.find("Motion.objectMovingFactor"), std::string::npos) << e;
+  const std::string f = test::settings_error(dir, kBase + "Motion.objectMovingFloorPx: 1\n");
+  EXPECT_NE(f.find("Motion.objectMovingFloorPx"), std::string::npos) << f;
+  const std::string g = test::settings_error(dir, kBase + "Motion.placeRadius: -1\n");
+  EXPECT_NE(g.find("Motion.placeRadius"), std::string::npos) << g;
+}
+
 TEST(MotionSettings, SparseViewKeysBind) {
   TempDir dir;
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));

@@ -65,6 +65,22 @@ TEST(InstanceBoxFeatures, FeaturesOnlyOnTheInstancesPixelsAsManyAsAFullFramePass
   EXPECT_EQ(same, compared);
 }
 
+// A small object next to a large person: by area alone it would get 6 % of
+// the budget (12 features); it gets at least half an equal share.
+TEST(InstanceBoxFeatures, ASmallBoxGetsAtLeastHalfAnEqualShare) {
+  const cv::Mat gray = test::blurred_noise(480, 640, 4);
+  cv::Mat1b inside = cv::Mat1b::zeros(480, 640);
+  const cv::Rect person(40, 40, 300, 400), box(480, 200, 60, 60);
+  inside(person).setTo(255);
+  inside(box).setTo(255);
+  const OrbFeatures f =
+      extract_in_boxes(OrbOptions{}, 200, gray, inside, merge_instance_boxes({person, box}, 32, gray.size()));
+  std::size_t on_box = 0;
+  for (const cv::KeyPoint& kp : f.keypoints) on_box += box.contains(cv::Point(kp.pt));
+  EXPECT_GT(on_box, 30u);
+  EXPECT_LE(f.keypoints.size(), 300u);  // the budget plus at most half of it
+}
+
 TEST(InstanceBoxFeatures, ASmallBoxUsesFewerLevelsAndStillWorks) {
   const cv::Mat gray = test::blurred_noise(480, 640, 4);
   cv::Mat1b inside = cv::Mat1b::zeros(480, 640);

@@ -101,6 +101,28 @@ TEST(MotionEvidence, ResidualsAreJudgedAgainstTheBackgroundOfTheSameFrame) {
             MotionVerdict::NoEvidence);
 }
 
+// Objects (instances of classes not masked for their class) have their own,
+// lower moving bar: 2.5 px against a 1 px background is motion for a box at
+// 2x / 2 px, and neither motion nor stillness for a person (2x .. 3x).
+TEST(MotionEvidence, ObjectsDisagreeBelowThePeoplesBar) {
+  MotionEvidenceOptions o;
+  o.object_moving_factor = 2.0;
+  o.object_moving_floor_px = 2.0;
+  MotionEvidence e(o);
+  InstanceResiduals box = instance(1, "box", 2.5);
+  box.object = true;
+  const InstanceResiduals person = instance(2, "person", 2.5);
+  const std::vector<InstanceMotionState> s = e.update(background(1.0), {box, person});
+  EXPECT_EQ(s[0].verdict, MotionVerdict::Disagrees);
+  EXPECT_EQ(s[1].verdict, MotionVerdict::NoEvidence);
+  // With the default object bar (the people's 3x / 3 px) the box is not moving either.
+  MotionEvidence d{MotionEvidenceOptions{}};
+  EXPECT_EQ(d.update(background(1.0), {box}).front().verdict, MotionVerdict::NoEvidence);
+  // An object bar below the agreeing one is refused.
+  o.object_moving_factor = 1.5;
+  EXPECT_THROW(o.check(), Error);
+}
+
 TEST(MotionEvidence, BadOptionsNameTheField) {
   MotionEvidenceOptions o;
   o.moving_factor = 1.5;  // below static_factor 2

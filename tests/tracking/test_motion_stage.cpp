@@ -41,7 +41,9 @@ struct Scene {
 // The person and the box of frame k (the frame index is the call count).
 class SceneSegmenter final : public Segmenter {
  public:
-  explicit SceneSegmenter(bool box_moves) : box_moves_(box_moves) {}
+  // The person is not detected in frames [hide_from, hide_to).
+  SceneSegmenter(bool box_moves, int hide_from, int hide_to)
+      : box_moves_(box_moves), hide_from_(hide_from), hide_to_(hide_to) {}
   std::vector<Detection> segment(const cv::Mat& bgr) override {
     const int k = calls_++;
     auto detection = [&](int class_id, const char* name, cv::Rect r) {
@@ -54,11 +56,13 @@ class SceneSegmenter final : public Segmenter {
       d.mask(r).setTo(255);
       return d;
     };
+    if (k >= hide_from_ && k < hide_to_) return {detection(-1, "box", box_at(k, box_moves_))};
     return {detection(0, "person", person_at(k)), detection(-1, "box", box_at(k, box_moves_))};
   }
 
  private:
   bool box_moves_;
+  int hide_from_, hide_to_;
   int calls_ = 0;
 };
 
@@ -68,13 +72,18 @@ struct StageRun {
   // Each frame's keypoints get fresh map points before the check: those it
   // flagged as seen on a person (on the person's region, elsewhere), and culled.
   std::vector<int> flagged_on_person, flagged_elsewhere, culled;
+  std::vector<int> watched_features;  // the stage's own features on the unmasked box
 };
 
-StageRun run_scene(int frames, bool box_moves, MotionOptions options) {
+// frame_features: the frames' ORB budget.
+StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1,
+                   int frame_features = OrbOptions{}.n_features) {
+  OrbOptions frame_orb;
+  frame_orb.n_features = frame_features;
   const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
   const auto setup = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 3.0);
-  SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves), {0}, 0);
-  FrameBuilder builder(setup, SensorType::Rgbd, OrbOptions{}, &worker);
+  SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves, hide_from, hide_to), {0}, 0);
+  FrameBuilder builder(setup, SensorType::Rgbd, frame_orb, &worker);
   options.enabled = true;
   MotionStage stage(setup->camera, OrbOptions{}, {0}, 0, options);
   builder.set_motion_stage(&stage);
@@ -90,6 +99,7 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options) {
     in.name = "frame " + std::to_string(k);
     FrameBuildStats stats;
     Frame frame = builder.build(in, static_cast<std::uint64_t>(k), &stats);
+    out.watched_features.push_back(stage.watched_features());
     // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
     Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
     T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
@@ -154,6 +164,44 @@ TEST(MotionStage, StillPersonLeavesTheMaskMovingBoxEntersIt) {
   // In the frame that finds the box moving, the points of its still tracked features are culled.
   EXPECT_EQ(r.culled[o.span - 1], 0);
   EXPECT_GT(r.culled[o.span], 5);
+}
+
+// The person goes undetected for 5 frames (its id is dropped after 3) and
+// comes back under a new id at the same place: with places it takes over
+// the old id's evidence and leaves the mask the frame after it is back;
+// without (placeRadius 0) it needs person_frames agreeing frames again.
+TEST(MotionStage, StillPersonBackUnderANewIdKeepsItsEvidence) {
+  MotionOptions o;
+  o.span = 6;
+  o.person_frames = 10;
+  constexpr int kHideFrom = 20, kBack = 25, kFrames = 45;
+  const StageRun with = run_scene(kFrames, false, o, kHideFrom, kBack);
+  for (int k = o.span + o.person_frames; k < kHideFrom; ++k) EXPECT_EQ(with.stats[k].static_instances, 1) << k;
+  EXPECT_EQ(with.masked_share_person[kBack], 1.0);  // a new id: masked until its place is known
+  for (int k = kBack + 1; k < kFrames; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(with.masked_share_person[k], 0.0);
+    EXPECT_EQ(with.stats[k].static_instances, 1);
+  }
+  o.place_radius_m = 0;
+  const StageRun without = run_scene(kFrames, false, o, kHideFrom, kBack);
+  for (int k = kBack; k <= kBack + o.person_frames; ++k) EXPECT_EQ(without.masked_share_person[k], 1.0) << k;
+}
+
+// Motion.watchObjects: the unmasked box gets features of its own for the
+// check (from the instance budget, the frame's being spread over the whole
+// view); without it, none until it is masked.
+TEST(MotionStage, UnmaskedObjectsGetFeaturesOfTheirOwn) {
+  MotionOptions o;
+  const StageRun with = run_scene(3, false, o);
+  o.watch_objects = false;
+  const StageRun without = run_scene(3, false, o);
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_GT(with.watched_features[k], 40);  // at least half an equal share of 200, less the box's border
+    EXPECT_EQ(without.watched_features[k], 0);
+    EXPECT_EQ(with.masked_share_box[k], 0.0);  // watched, not masked
+  }
 }
 
 TEST(MotionStage, StillBoxStaysUnmasked) {

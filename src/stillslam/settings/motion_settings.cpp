@@ -7,10 +7,15 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   SectionKeys keys(yaml, "Motion", true);
   keys.flag("enabled", options.enabled, "MotionOptions.enabled");
   keys.integer("instanceFeatures", options.instance_features, "MotionOptions.instance_features", {1, 10000});
+  keys.flag("watchObjects", options.watch_objects, "MotionOptions.watch_objects");
   keys.integer("span", options.span, "MotionOptions.span", {1, 100});
   keys.integer("personFrames", options.person_frames, "MotionOptions.person_frames", {1, 10000});
   keys.integer("defaultFrames", options.default_frames, "MotionOptions.default_frames", {1, 10000});
   keys.number("minIou", options.min_iou, "MotionOptions.min_iou", {0, 1, true});
+  keys.number("objectMovingFactor", options.object_moving_factor, "MotionOptions.object_moving_factor", {2, 100});
+  keys.number("objectMovingFloorPx", options.object_moving_floor_px, "MotionOptions.object_moving_floor_px", {1.5, 100});
+  keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
+  keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");
   keys.number("sparseViewMaskedShare", options.sparse_view.masked_share, "SparseViewOptions.masked_share", {0, 1});
   keys.integer("sparseViewInliers", options.sparse_view.inliers, "SparseViewOptions.inliers", {0, 100000});

@@ -57,7 +57,10 @@ OrbFeatures extract_in_boxes(const OrbOptions& orb, int budget, const cv::Mat& g
   if (total_area <= 0 || budget <= 0) return out;
   for (const cv::Rect& box : boxes) {
     OrbOptions options = orb;
-    options.n_features = std::max(1, static_cast<int>(std::lround(budget * box.area() / total_area)));
+    // By area, but at least half an equal share: a small object next to a
+    // large person still gets enough features to be judged.
+    const double share = std::max(box.area() / total_area, 0.5 / static_cast<double>(boxes.size()));
+    options.n_features = std::max(1, static_cast<int>(std::lround(budget * share)));
     options.n_levels = levels_for(box.size(), orb);
     const OrbExtractor extractor(options);
     const cv::Mat1b outside = inside(box) == 0;

@@ -18,7 +18,9 @@ std::vector<cv::Rect> merge_instance_boxes(const std::vector<cv::Rect>& boxes, i
 
 // ORB features of `gray` inside `boxes` (merge_instance_boxes' output) on
 // pixels where `inside` is non-zero, in full-image pixels. `orb`'s settings
-// with `budget` features shared by the boxes in proportion to their area; a
+// with `budget` features shared by the boxes in proportion to their area, each
+// box getting at least half an equal share (the total can exceed `budget`
+// by up to half); a
 // box gets the pyramid levels whose image is still larger than the ORB patch
 // border on both sides (one level at least).
 OrbFeatures extract_in_boxes(const OrbOptions& orb, int budget, const cv::Mat& gray, const cv::Mat1b& inside,

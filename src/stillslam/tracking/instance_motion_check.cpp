@@ -25,6 +25,20 @@ void InstanceMotionCheck::reset() {
   evidence_ = MotionEvidence(options_.evidence);
 }
 
+void InstanceMotionCheck::relabel(std::uint32_t from, std::uint32_t to) {
+  evidence_.forget(static_cast<int>(from));
+  for (MotionCheckFrame& f : frames_) {
+    for (std::uint32_t& id : f.instance) {
+      if (id == from) id = to;
+    }
+    if (const auto it = f.categories.find(from); it != f.categories.end()) {
+      f.categories[to] = it->second;
+      f.categories.erase(from);
+    }
+    if (f.objects.erase(from)) f.objects.insert(to);
+  }
+}
+
 MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
   const std::size_t n = frame.pixels.size();
   if (frame.depth.size() != n || frame.instance.size() != n || static_cast<std::size_t>(frame.descriptors.rows) != n) {
@@ -55,7 +69,8 @@ MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
   std::vector<InstanceResiduals> instances;
   for (const auto& [id, residuals] : result.residuals) {
     const auto category = cur.categories.find(id);
-    instances.push_back({static_cast<int>(id), category != cur.categories.end() ? category->second : "", residuals});
+    instances.push_back({static_cast<int>(id), category != cur.categories.end() ? category->second : "", residuals,
+                         cur.objects.count(id) > 0});
   }
   result.instances = evidence_.update(result.background_residuals, instances);
   result.background_matches = static_cast<int>(result.background_residuals.size());

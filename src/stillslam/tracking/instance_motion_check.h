@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct MotionCheckFrame {
   std::vector<std::uint32_t> instance;   // 0: background, else the instance's stable id
   cv::Mat descriptors;                   // one 32-byte ORB row per feature
   std::map<std::uint32_t, std::string> categories;  // class name of each instance in this frame
+  std::set<std::uint32_t> objects;  // instances judged as objects (MotionEvidenceOptions::object_moving_*)
 };
 
 struct MotionCheckResult {
@@ -62,6 +64,11 @@ class InstanceMotionCheck {
 
   bool is_static(std::uint32_t id) const { return evidence_.is_static(static_cast<int>(id)); }
   void forget(std::uint32_t id) { evidence_.forget(static_cast<int>(id)); }
+  // Whether the instance has been judged at all (has evidence, even none yet).
+  bool has_evidence(std::uint32_t id) const { return evidence_.has(static_cast<int>(id)); }
+  // The frames kept so far call instance `from` `to` (an instance found to be
+  // one seen before, instance_places.h); `from`'s own evidence is dropped.
+  void relabel(std::uint32_t from, std::uint32_t to);
   // Starts over (a new map, tracking lost): frames kept so far are dropped, the evidence too.
   void reset();
 

@@ -18,6 +18,14 @@ void MotionEvidenceOptions::check() const {
     throw OptionError("MotionEvidenceOptions.moving_floor_px", text(moving_floor_px),
                       "must be >= static_floor_px (" + text(static_floor_px) + ")");
   }
+  if (object_moving_factor < static_factor) {
+    throw OptionError("MotionEvidenceOptions.object_moving_factor", text(object_moving_factor),
+                      "must be >= static_factor (" + text(static_factor) + ")");
+  }
+  if (object_moving_floor_px < static_floor_px) {
+    throw OptionError("MotionEvidenceOptions.object_moving_floor_px", text(object_moving_floor_px),
+                      "must be >= static_floor_px (" + text(static_floor_px) + ")");
+  }
   at_least("MotionEvidenceOptions.min_matches", min_matches, 1);
   at_least("MotionEvidenceOptions.min_background", min_background, 1);
   at_least("MotionEvidenceOptions.moving_weight", moving_weight, 1);
@@ -48,6 +56,8 @@ std::vector<InstanceMotionState> MotionEvidence::update(const std::vector<double
   const bool have_background = static_cast<int>(background.size()) >= options_.min_background;
   const double agree_px = std::max(options_.static_factor * background_median_, options_.static_floor_px);
   const double move_px = std::max(options_.moving_factor * background_median_, options_.moving_floor_px);
+  const double object_move_px =
+      std::max(options_.object_moving_factor * background_median_, options_.object_moving_floor_px);
   std::vector<InstanceMotionState> out;
   out.reserve(instances.size());
   for (const InstanceResiduals& instance : instances) {
@@ -59,7 +69,7 @@ std::vector<InstanceMotionState> MotionEvidence::update(const std::vector<double
     s.verdict = MotionVerdict::NoEvidence;
     if (have_background && s.matches >= options_.min_matches) {
       if (s.median_px <= agree_px) s.verdict = MotionVerdict::Agrees;
-      if (s.median_px > move_px) s.verdict = MotionVerdict::Disagrees;
+      if (s.median_px > (instance.object ? object_move_px : move_px)) s.verdict = MotionVerdict::Disagrees;
     }
     const double needed = options_.frames_for(instance.category);
     if (s.verdict == MotionVerdict::Agrees) s.log_odds = std::min(s.log_odds + 1.0, needed);

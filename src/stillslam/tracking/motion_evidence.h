@@ -23,6 +23,12 @@ struct MotionEvidenceOptions {
   // Disagreement: instance median residual > max(moving_factor * background median, moving_floor_px).
   double moving_factor = 3.0;
   double moving_floor_px = 3.0;
+  // The same for objects (instances of classes not masked for their class: a
+  // box, a chair), which are masked once they disagree: a lower bar than for
+  // people finds a pushed object in the first frames of its motion, and a
+  // person's sway never meets it as people are judged with the one above.
+  double object_moving_factor = 3.0;
+  double object_moving_floor_px = 3.0;
   int min_matches = 4;        // fewer matched features on an instance: no evidence this frame
   int min_background = 20;    // fewer background matches: no evidence for anyone this frame
   double moving_weight = 4.0; // log-odds lost per disagreeing frame (one agreeing frame gains 1)
@@ -41,6 +47,7 @@ struct InstanceResiduals {
   int id = 0;                      // instance id, stable across frames
   std::string category;            // class name (person, car, ...)
   std::vector<double> residuals;   // of its features matched in both frames, pixels
+  bool object = false;             // judged with the object_moving_* bar
 };
 
 struct InstanceMotionState {
@@ -63,6 +70,7 @@ class MotionEvidence {
   // Median background residual of the last update (0 before any).
   double background_median() const { return background_median_; }
   bool is_static(int id) const;
+  bool has(int id) const { return states_.count(id) > 0; }
   // Drops an instance that left the view or was lost by the segmenter.
   void forget(int id) { states_.erase(id); }
   std::size_t tracked() const { return states_.size(); }

@@ -11,6 +11,11 @@ void MotionOptions::check() const {
   in_range("MotionOptions.person_frames", person_frames, 1, 10000);
   in_range("MotionOptions.default_frames", default_frames, 1, 10000);
   in_half_open("MotionOptions.min_iou", min_iou, 0, 1);
+  in_range("MotionOptions.place_radius_m", place_radius_m, 0, 10);
+  in_range("MotionOptions.place_memory_frames", place_memory_frames, 0, 100000);
+  in_range("MotionOptions.object_moving_factor", object_moving_factor, 2, 100);
+  in_range("MotionOptions.object_moving_floor_px", object_moving_floor_px, 1.5, 100);
+  check_options().check();
   sparse_view.check();
 }
 
@@ -19,6 +24,8 @@ InstanceMotionCheckOptions MotionOptions::check_options() const {
   o.span = span;
   o.evidence.default_frames = default_frames;
   o.evidence.frames_by_class["person"] = person_frames;
+  o.evidence.object_moving_factor = object_moving_factor;
+  o.evidence.object_moving_floor_px = object_moving_floor_px;
   return o;
 }
 

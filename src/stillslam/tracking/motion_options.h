@@ -3,6 +3,7 @@
 // segmented instances are judged by their motion (instance_motion_check.h)
 // instead of by class alone. Off by default (see config/README.md).
 #include "stillslam/tracking/instance_motion_check.h"
+#include "stillslam/tracking/instance_places.h"
 #include "stillslam/tracking/sparse_view.h"
 
 namespace stillslam {
@@ -12,16 +13,29 @@ struct MotionOptions {
   // ORB features extracted inside the masked area (kept apart from tracking)
   // so masked instances can be judged too.
   int instance_features = 200;
+  // Objects not (yet) masked get features of their own from that budget too,
+  // so a small one has enough matches to be judged (the frame's features
+  // are spread over the whole view).
+  bool watch_objects = true;
   int span = 6;            // frames between the two views compared
   int person_frames = 10;  // agreeing frames a person needs before it is kept as static
   int default_frames = 10; // the same for every other class
   double min_iou = 0.3;    // mask overlap for an instance to keep its id across segmentations
+  // An object (not of a dynamic class) disagrees above max(factor x the
+  // background's median residual, floor): lower than a person's 3x / 3 px.
+  double object_moving_factor = 2.0;
+  double object_moving_floor_px = 2.0;
+  // A new instance within this distance (world frame) of where one of its
+  // class was last seen takes over its evidence (instance_places.h); 0: never.
+  double place_radius_m = 0.5;
+  int place_memory_frames = 300;  // judged frames a place is remembered
   // The crowd fallback (Motion.sparseView*): the tracker's, with or without
   // `enabled` above (System copies it into TrackerOptions).
   SparseViewOptions sparse_view;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
   InstanceMotionCheckOptions check_options() const;
+  InstancePlacesOptions places_options() const { return {place_radius_m, place_memory_frames}; }
 };
 
 }  // namespace stillslam

@@ -1,6 +1,7 @@
 #include "stillslam/tracking/motion_stage.h"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -34,11 +35,21 @@ MotionStage::MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std
       dilation_px_(dilation_px),
       options_(std::move(options)),
       ids_(InstanceIdOptions{.min_iou = options_.min_iou}),
-      check_(camera, options_.check_options()) {}
+      check_(camera, options_.check_options()),
+      places_(options_.places_options()) {}
 
 void MotionStage::reset() {
   check_.reset();
   moving_.clear();
+  places_.clear();
+  alias_.clear();
+  age_.clear();
+  judged_ = 0;
+}
+
+std::uint32_t MotionStage::evidence_id(std::uint32_t stable) const {
+  const auto it = alias_.find(stable);
+  return it != alias_.end() ? it->second : stable;
 }
 
 std::uint32_t MotionStage::label_at(const cv::Point2f& p) const {
@@ -56,9 +67,12 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
   pending_ = true;
   labels_ = cv::Mat1i::zeros(size);
   categories_.clear();
+  stable_of_.clear();
   dynamic_ids_.clear();
   inside_ = MotionCheckFrame{};
   boxes_.clear();
+  watched_ = cv::Mat1b::zeros(size);
+  watched_ids_.clear();
   std::vector<cv::Mat1b> masks;
   std::vector<int> classes;
   for (const Detection& d : detections) {
@@ -72,17 +86,18 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
     return s;
   }();
   const std::vector<std::uint32_t> ids = ids_.assign(masks, classes);
-  // Instances whose ids were dropped take their evidence with them.
+  // Dropped ids: their evidence stays with their place (until InstancePlaces forgets it).
   std::set<std::uint32_t> alive;
   for (const TrackedInstance& t : ids_.tracked()) alive.insert(t.id);
   for (std::uint32_t id : before) {
     if (alive.count(id)) continue;
-    check_.forget(id);
-    moving_.erase(id);
+    alias_.erase(id);
+    age_.erase(id);
   }
   std::vector<cv::Mat1b> masked_instances;
   for (std::size_t n = 0; n < masks.size(); ++n) {
-    const std::uint32_t id = ids[n];
+    const std::uint32_t id = evidence_id(ids[n]);
+    stable_of_[id] = ids[n];
     labels_.setTo(static_cast<int>(id), masks[n]);
     categories_[id] = detections[n].class_name;
     if (std::find(dynamic_class_ids_.begin(), dynamic_class_ids_.end(), classes[n]) != dynamic_class_ids_.end()) {
@@ -90,6 +105,10 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
     }
     if (masked(id)) {
       masked_instances.push_back(masks[n]);
+      boxes_.push_back(cv::boundingRect(masks[n]));
+    } else if (options_.watch_objects && !dynamic_ids_.count(id)) {
+      watched_.setTo(255, masks[n]);
+      watched_ids_.insert(id);
       boxes_.push_back(cv::boundingRect(masks[n]));
     }
   }
@@ -103,6 +122,32 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
                           MotionFrameStats& stats) {
   if (!pending_) return;
   stats.judged = true;
+  // Each instance's place in the camera frame, from its pixels with depth:
+  // the centroid's ray at the median depth (known from its first frame on,
+  // features or not).
+  mask_points_.clear();
+  mask_pixels_.clear();
+  if (!depth.empty()) {
+    std::map<std::uint32_t, std::vector<double>> depths;
+    std::map<std::uint32_t, Eigen::Vector3d> sums;  // u, v, count
+    for (int v = 0; v < labels_.rows; v += 2) {
+      for (int u = 0; u < labels_.cols; u += 2) {
+        const auto id = static_cast<std::uint32_t>(labels_(v, u));
+        const float z = depth.at<float>(v, u);
+        if (id == 0 || !(z > 0)) continue;
+        depths[id].push_back(z);
+        sums.try_emplace(id, Eigen::Vector3d::Zero()).first->second += Eigen::Vector3d(u, v, 1);
+      }
+    }
+    for (auto& [id, z] : depths) {
+      if (z.size() < 10) continue;
+      const Eigen::Vector3d& s = sums[id];
+      const cv::KeyPoint centre(static_cast<float>(s.x() / s.z()), static_cast<float>(s.y() / s.z()), 1.f);
+      const cv::Point2f c = camera_.undistort(std::vector<cv::KeyPoint>{centre}).front().pt;
+      mask_points_[id] = camera_.unproject(Eigen::Vector2d(c.x, c.y), median_of(z));
+      mask_pixels_[id] = static_cast<int>(4 * s.z());
+    }
+  }
   for (std::uint32_t id : dynamic_ids_) stats.static_instances += check_.is_static(id);
   for (const auto& [id, category] : categories_) stats.moving_instances += !dynamic_ids_.count(id) && moving_.count(id);
   for (const cv::Point2f& p : removed) {
@@ -117,9 +162,11 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
     const std::uint32_t id = label_at(kp.pt);
     stats.features_kept_by_motion += id != 0 && dynamic_ids_.count(id);
   }
-  if (exclude.empty() || cv::countNonZero(exclude) == 0) return;
-  // The masked instances' boxes only: their own small budget, apart from the frame's.
-  const OrbFeatures f = extract_in_boxes(orb_, orb_.n_features, gray, exclude,
+  cv::Mat1b inside = watched_.clone();
+  if (!exclude.empty()) cv::bitwise_or(inside, exclude, inside);
+  if (cv::countNonZero(inside) == 0) return;
+  // The masked and watched instances' boxes only: their own small budget, apart from the frame's.
+  const OrbFeatures f = extract_in_boxes(orb_, orb_.n_features, gray, inside,
                                          merge_instance_boxes(boxes_, kBoxPad, gray.size()));
   const std::vector<cv::KeyPoint> undistorted = camera_.undistort(f.keypoints);
   std::vector<int> rows;
@@ -139,6 +186,76 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
   stats.instance_features = static_cast<int>(rows.size());
 }
 
+void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>& frame_labels) {
+  ++judged_;
+  // Without a depth image: the per-axis median of its features' points with depth.
+  std::map<std::uint32_t, std::vector<Eigen::Vector3d>> points;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame_labels[i] == 0 || frame.depth(i) <= 0) continue;
+    const cv::Point2f& p = frame.keypoints()[i].pt;
+    points[frame_labels[i]].push_back(camera_.unproject(Eigen::Vector2d(p.x, p.y), frame.depth(i)));
+  }
+  for (std::size_t i = 0; i < inside_.pixels.size(); ++i) {
+    if (inside_.depth[i] > 0) points[inside_.instance[i]].push_back(camera_.unproject(inside_.pixels[i], inside_.depth[i]));
+  }
+  const Eigen::Isometry3d T_world_cam = frame.T_cam_world().inverse();
+  std::set<std::uint32_t> present;
+  for (const auto& [id, category] : categories_) present.insert(id);
+  const std::map<std::uint32_t, std::string> categories = categories_;
+  for (const auto& [first_id, category] : categories) {
+    std::uint32_t id = first_id;
+    std::optional<Eigen::Vector3d> place;
+    if (const auto m = mask_points_.find(id); m != mask_points_.end()) {
+      place = T_world_cam * m->second;
+    } else if (std::vector<Eigen::Vector3d>& pts = points[id]; pts.size() >= 3) {
+      Eigen::Vector3d m;
+      for (int axis = 0; axis < 3; ++axis) {
+        std::vector<double> v;
+        for (const Eigen::Vector3d& q : pts) v.push_back(q[axis]);
+        m[axis] = median_of(v);
+      }
+      place = T_world_cam * m;
+    }
+    const std::uint32_t stable = stable_of_[id];
+    int& age = age_[stable];
+    // Only a new id (within its first span frames, not yet matched) looks for an earlier instance.
+    if (place && id == stable && age < options_.span) {
+      if (const std::uint32_t earlier = places_.match(category, *place, present)) {
+        alias_[stable] = earlier;
+        check_.relabel(id, earlier);
+        for (std::uint32_t& l : frame_labels) {
+          if (l == id) l = earlier;
+        }
+        for (std::uint32_t& l : inside_.instance) {
+          if (l == id) l = earlier;
+        }
+        cv::Mat1b here = labels_ == static_cast<int>(id);
+        labels_.setTo(static_cast<int>(earlier), here);
+        categories_.erase(id);
+        categories_[earlier] = category;
+        if (const auto m = mask_pixels_.find(id); m != mask_pixels_.end()) {
+          mask_pixels_[earlier] = m->second;
+          mask_pixels_.erase(id);
+        }
+        stable_of_.erase(id);
+        stable_of_[earlier] = stable;
+        if (dynamic_ids_.erase(id)) dynamic_ids_.insert(earlier);
+        moving_.erase(id);
+        present.insert(earlier);
+        id = earlier;
+      }
+    }
+    ++age;
+    const auto area = mask_pixels_.find(id);
+    places_.seen(id, category, judged_, place ? &*place : nullptr, area != mask_pixels_.end() ? area->second : 0);
+  }
+  for (std::uint32_t gone : places_.expire(judged_)) {
+    check_.forget(gone);
+    moving_.erase(gone);
+    for (auto it = alias_.begin(); it != alias_.end();) it = it->second == gone ? alias_.erase(it) : std::next(it);
+  }
+}
+
 int MotionStage::on_tracked(const Frame& frame, bool tracked) {
   if (!pending_) return 0;
   pending_ = false;
@@ -146,27 +263,33 @@ int MotionStage::on_tracked(const Frame& frame, bool tracked) {
     reset();
     return 0;
   }
+  std::vector<std::uint32_t> frame_labels(frame.size());
+  for (std::size_t i = 0; i < frame.size(); ++i) frame_labels[i] = label_at(frame.keypoints_raw()[i].pt);
+  // A watched object is judged on its own features (collect()), not on the frame's there too.
+  std::vector<int> judged_rows;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (!watched_ids_.count(frame_labels[i])) judged_rows.push_back(static_cast<int>(i));
+  }
+  place_instances(frame, frame_labels);
   MotionCheckFrame f;
   f.T_cam_world = frame.T_cam_world();
   f.categories = categories_;
-  std::vector<std::uint32_t> frame_labels(frame.size());
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    frame_labels[i] = label_at(frame.keypoints_raw()[i].pt);
-    const cv::Point2f& p = frame.keypoints()[i].pt;
+  for (const auto& [id, category] : categories_) {
+    if (!dynamic_ids_.count(id)) f.objects.insert(id);
+  }
+  f.descriptors.create(static_cast<int>(judged_rows.size()) + inside_.descriptors.rows, 32, CV_8UC1);
+  int row = 0;
+  for (int i : judged_rows) {
+    const cv::Point2f& p = frame.keypoints()[static_cast<std::size_t>(i)].pt;
     f.pixels.emplace_back(p.x, p.y);
-    f.depth.push_back(frame.depth(i));
-    f.instance.push_back(frame_labels[i]);
+    f.depth.push_back(frame.depth(static_cast<std::size_t>(i)));
+    f.instance.push_back(frame_labels[static_cast<std::size_t>(i)]);
+    frame.descriptors().row(i).copyTo(f.descriptors.row(row++));
   }
   f.pixels.insert(f.pixels.end(), inside_.pixels.begin(), inside_.pixels.end());
   f.depth.insert(f.depth.end(), inside_.depth.begin(), inside_.depth.end());
   f.instance.insert(f.instance.end(), inside_.instance.begin(), inside_.instance.end());
-  if (inside_.descriptors.empty()) {
-    f.descriptors = frame.descriptors().clone();
-  } else if (frame.descriptors().empty()) {
-    f.descriptors = inside_.descriptors;
-  } else {
-    cv::vconcat(frame.descriptors(), inside_.descriptors, f.descriptors);
-  }
+  for (int k = 0; k < inside_.descriptors.rows; ++k) inside_.descriptors.row(k).copyTo(f.descriptors.row(row++));
   const MotionCheckResult r = check_.add(std::move(f));
   for (const InstanceMotionState& s : r.instances) {
     const auto id = static_cast<std::uint32_t>(s.id);

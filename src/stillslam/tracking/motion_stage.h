@@ -9,6 +9,10 @@
 // are still watched through a small set of features extracted inside the
 // mask and kept apart from tracking.
 //
+// An instance that comes back under a new id (it left the view, was hidden,
+// or its mask changed too much) where one of its class was last seen takes
+// over that one's evidence (instance_places.h).
+//
 // Per frame, in order: mask_for() (frame builder, fresh segmentation),
 // collect() (frame builder, after extraction), on_tracked() (after tracking,
 // map lock held). Frames without a fresh segmentation skip the stage.
@@ -26,6 +30,7 @@
 #include "stillslam/segmentation/detection.h"
 #include "stillslam/segmentation/instance_ids.h"
 #include "stillslam/tracking/instance_motion_check.h"
+#include "stillslam/tracking/instance_places.h"
 #include "stillslam/tracking/motion_frame_stats.h"
 #include "stillslam/tracking/motion_options.h"
 
@@ -59,12 +64,23 @@ class MotionStage {
 
   bool is_static(std::uint32_t id) const { return check_.is_static(id); }
   bool is_moving(std::uint32_t id) const { return moving_.count(id) > 0; }
+  // This frame's features of its own on unmasked objects (Motion.watchObjects), after collect().
+  int watched_features() const {
+    int n = 0;
+    for (std::uint32_t id : inside_.instance) n += watched_ids_.count(id) > 0;
+    return n;
+  }
   void reset();
 
  private:
   // 0: background; else the instance id at the pixel (rounded, clamped).
   std::uint32_t label_at(const cv::Point2f& p) const;
   bool masked(std::uint32_t id) const;
+  std::uint32_t evidence_id(std::uint32_t stable) const;
+  // Matches this frame's new instances with the places of earlier ones
+  // (relabelling them in `frame_labels` and the stage's state) and records
+  // where every instance is now.
+  void place_instances(const Frame& frame, std::vector<std::uint32_t>& frame_labels);
 
   PinholeCamera camera_;
   OrbOptions orb_;  // the frame's extraction settings (instance_box_features.h shares out the budget)
@@ -74,12 +90,21 @@ class MotionStage {
   InstanceIds ids_;
   InstanceMotionCheck check_;
   std::set<std::uint32_t> moving_;  // instances of non-dynamic classes judged moving
+  InstancePlaces places_;
+  std::map<std::uint32_t, std::uint32_t> alias_;  // segmenter's stable id -> the earlier instance it was found to be
+  std::map<std::uint32_t, int> age_;              // judged frames since each stable id appeared
+  std::int64_t judged_ = 0;                       // frames judged since the last reset
   // This frame (between mask_for() and on_tracked()).
   bool pending_ = false;
   cv::Mat1i labels_;
-  std::map<std::uint32_t, std::string> categories_;
+  std::map<std::uint32_t, std::string> categories_;      // by evidence id
+  std::map<std::uint32_t, std::uint32_t> stable_of_;     // evidence id -> stable id
   std::set<std::uint32_t> dynamic_ids_;  // of a dynamic class
-  std::vector<cv::Rect> boxes_;          // of the masked instances, where their features are extracted
+  std::vector<cv::Rect> boxes_;          // of the masked and watched instances, where their features are extracted
+  cv::Mat1b watched_;                    // pixels of the unmasked objects (options_.watch_objects)
+  std::set<std::uint32_t> watched_ids_;
+  std::map<std::uint32_t, Eigen::Vector3d> mask_points_;  // camera frame, from the depth image (collect())
+  std::map<std::uint32_t, int> mask_pixels_;              // pixels with depth of each instance
   MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
 };
 

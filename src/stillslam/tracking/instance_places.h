@@ -1,0 +1,60 @@
+#pragma once
+// Where (world frame) each judged instance was last seen, so that an
+// instance that comes back under a new id takes over the evidence of the one
+// seen at the same place: the segmenter's ids change when an instance leaves
+// the view and comes back, is hidden for a while, or when its mask changes
+// too much between frames (a small person behind a passer-by). A still
+// person or a parked object stays where it was, so its place identifies it;
+// a walking person is rarely found where another instance of its class was.
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace stillslam {
+
+struct InstancePlacesOptions {
+  double radius_m = 0.5;    // same place: world points of the same class this close; 0: no matching
+  int memory_frames = 300;  // judged frames an instance is kept after it was last seen
+  // Throws OptionError naming the field, its value and the valid range.
+  void check() const;
+};
+
+class InstancePlaces {
+ public:
+  explicit InstancePlaces(InstancePlacesOptions options = {});
+
+  // Instance `id` of `category` is in judged frame `frame`, at `p_world`
+  // when its place is known (else only its last frame is kept), seen on
+  // `pixels` pixels.
+  void seen(std::uint32_t id, const std::string& category, std::int64_t frame, const Eigen::Vector3d* p_world,
+            int pixels = 0);
+  // The remembered instance of `category` nearest to `p_world` within the
+  // radius, not one of `present` (those in this frame); 0 when none. Each
+  // instance is where it was last seen and where it was seen on the most
+  // pixels (its most complete view: a part seen at the image border has its
+  // centre off the instance's).
+  std::uint32_t match(const std::string& category, const Eigen::Vector3d& p_world,
+                      const std::set<std::uint32_t>& present) const;
+  // Drops the instances not seen for memory_frames before `frame`; returns their ids.
+  std::vector<std::uint32_t> expire(std::int64_t frame);
+  void clear() { places_.clear(); }
+  std::size_t size() const { return places_.size(); }
+
+ private:
+  struct Place {
+    std::string category;
+    std::int64_t last_frame = 0;
+    bool known = false;
+    Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+    int most_pixels = -1;
+    Eigen::Vector3d p_most = Eigen::Vector3d::Zero();  // where it was seen on the most pixels
+  };
+  InstancePlacesOptions options_;
+  std::map<std::uint32_t, Place> places_;
+};
+
+}  // namespace stillslam

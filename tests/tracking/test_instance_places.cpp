@@ -1,0 +1,66 @@
+// InstancePlaces: an instance's last place (world frame) and last frame;
+// a new instance matches the nearest remembered one of its class within the
+// radius that is not in the frame; places not seen for memory_frames expire.
+#include <gtest/gtest.h>
+
+#include "stillslam/core/error.h"
+#include "stillslam/tracking/instance_places.h"
+
+namespace stillslam {
+namespace {
+
+TEST(InstancePlaces, MatchesTheNearestOfItsClassWithinTheRadius) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d sitter(1, 2, 0.6), box(1.3, 2, 0.8), far(4, 0, 0);
+  places.seen(3, "person", 0, &sitter);
+  places.seen(4, "box", 0, &box);
+  places.seen(5, "person", 0, &far);
+  places.seen(6, "person", 0, nullptr);  // no place known
+  EXPECT_EQ(places.match("person", Eigen::Vector3d(1.2, 2.1, 0.5), {}), 3u);
+  EXPECT_EQ(places.match("box", Eigen::Vector3d(1.2, 2.1, 0.5), {}), 4u);
+  EXPECT_EQ(places.match("person", Eigen::Vector3d(1.2, 2.1, 0.5), {3}), 0u);  // 3 is in the frame
+  EXPECT_EQ(places.match("person", Eigen::Vector3d(1.0, 2.6, 0.6), {}), 0u);   // 0.6 m away
+  EXPECT_EQ(places.match("chair", sitter, {}), 0u);
+  EXPECT_EQ(places.match("person", Eigen::Vector3d(3.8, 0, 0), {}), 5u);
+}
+
+// A person seen whole, then only its head at the image border: a new id
+// seen later by its feet matches the whole view's place, not the head's.
+TEST(InstancePlaces, MatchesWhereItWasSeenMostCompletely) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d whole(0, 0, 0.6), head(0, 0, 1.1), feet(0.1, 0, 0.2);
+  places.seen(3, "person", 0, &whole, 9000);
+  places.seen(3, "person", 1, &head, 800);
+  EXPECT_EQ(places.match("person", feet, {}), 3u);  // 0.41 m from the whole view, 0.9 m from the head
+  EXPECT_EQ(places.match("person", head, {}), 3u);
+  InstancePlaces last_only(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  last_only.seen(3, "person", 1, &head, 800);
+  EXPECT_EQ(last_only.match("person", feet, {}), 0u);
+}
+
+TEST(InstancePlaces, ForgetsPlacesNotSeenForMemoryFrames) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d p(0, 0, 1);
+  places.seen(1, "person", 0, &p);
+  places.seen(2, "person", 5, &p);
+  EXPECT_TRUE(places.expire(10).empty());
+  EXPECT_EQ(places.expire(11), std::vector<std::uint32_t>{1});
+  EXPECT_EQ(places.match("person", p, {}), 2u);
+  places.seen(2, "person", 20, nullptr);  // seen again without a place: keeps the last one
+  EXPECT_EQ(places.match("person", p, {}), 2u);
+  EXPECT_TRUE(places.expire(30).empty());
+  EXPECT_EQ(places.size(), 1u);
+}
+
+TEST(InstancePlaces, OptionsOutOfRangeNameTheField) {
+  EXPECT_THROW(InstancePlaces(InstancePlacesOptions{.radius_m = -1, .memory_frames = 10}), Error);
+  try {
+    InstancePlacesOptions{.radius_m = 0.5, .memory_frames = -1}.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("InstancePlacesOptions.memory_frames"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace stillslam
