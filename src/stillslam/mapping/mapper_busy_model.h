@@ -15,9 +15,12 @@
 namespace stillslam {
 
 struct MapperBusyModelOptions {
-  double keyframe_ms = 20;                 // registration, triangulation, fusion, culling
-  double observation_us = 6;               // per local-BA observation: gathering, setup, apply
-  double observation_iteration_us = 0.75;  // per observation and Ceres iteration
+  double keyframe_ms = 20;  // registration, triangulation, fusion, culling
+  // Least-squares fits of local-BA CPU per BA to observations and
+  // observations x iterations (bench/README.md, "Issue #21, session 9"): the
+  // Schur solver's; with LocalMapping.baSolver: ceres, 6 and 0.75 fit instead.
+  double observation_us = 1.7;             // per local-BA observation: gathering, setup, apply
+  double observation_iteration_us = 0.18;  // per observation and solver iteration
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -26,7 +29,7 @@ class MapperBusyModel {
  public:
   explicit MapperBusyModel(MapperBusyModelOptions options = {});
   // The modelled cost of one keyframe whose local BA had `observations`
-  // observations and ran `iterations` Ceres iterations (0, 0: no BA).
+  // observations and ran `iterations` solver iterations (0, 0: no BA).
   double busy_ms(int observations, int iterations) const;
   // A keyframe that arrived at `arrival` (input timestamp, seconds) keeps
   // the mapper busy for `busy_ms`. Arrivals come in order.
