@@ -8,10 +8,10 @@ namespace stillslam {
 namespace {
 
 TEST(MapperBusyModel, CostGrowsWithObservationsAndIterations) {
-  const MapperBusyModel model;  // 20 ms + obs * (1.7 + it * 0.18) us
+  const MapperBusyModel model;  // 20 ms + obs * (6 + it * 0.75) us
   EXPECT_DOUBLE_EQ(model.busy_ms(0, 0), 20.0);
-  EXPECT_DOUBLE_EQ(model.busy_ms(10000, 0), 37.0);
-  EXPECT_DOUBLE_EQ(model.busy_ms(10000, 8), 51.4);
+  EXPECT_DOUBLE_EQ(model.busy_ms(10000, 0), 80.0);
+  EXPECT_DOUBLE_EQ(model.busy_ms(10000, 8), 140.0);
   MapperBusyModelOptions o;
   o.keyframe_ms = 5;
   o.observation_us = 1;
