@@ -1,6 +1,6 @@
 #pragma once
 // Local bundle adjustment around a keyframe, in three phases so the map lock
-// is not held while Ceres runs: gather (under the lock) copies the window —
+// is not held while the solver runs: gather (under the lock) copies the window —
 // the keyframe and its covisible keyframes, their points, and as fixed
 // keyframes the others observing those points, each bounded by
 // LocalWindowOptions — into plain structs; solve

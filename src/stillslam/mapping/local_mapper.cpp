@@ -110,7 +110,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       Stopwatch ba;
       ThreadCpuStopwatch ba_cpu;
       BundleAdjustmentOptions ba_options = options_.bundle_adjustment;
-      // Ceres sees the interrupt only after iterations_before_interrupt
+      // The solver sees the interrupt only after iterations_before_interrupt
       // iterations (counted over the passes, each pass's start included).
       std::atomic<bool> ba_abort{false};
       int calls = 0;

@@ -30,7 +30,7 @@ struct LocalMapperOptions {
   // (bench/README.md, issue #21: nearly all aborted BAs were these).
   bool pause_aborts_bundle_adjustment = false;
   // An interrupt stops the running local BA only once it has done this many
-  // Ceres iterations (0: at once), so that it has a step to keep
+  // solver iterations (0: at once), so that it has a step to keep
   // (bundle_adjustment.keep_progress_on_abort) instead of nothing.
   int iterations_before_interrupt = 1;
   // Keyframe admission asks a model of how long the mapper would be busy
@@ -75,7 +75,7 @@ struct LocalMapperOptions {
 enum class BundleAdjustmentAbort { None, Tracking, Pause };
 const char* to_string(BundleAdjustmentAbort cause);
 
-// One local BA: its window, Ceres iterations and cost (wall and mapping-thread CPU).
+// One local BA: its window, solver iterations and cost (wall and mapping-thread CPU).
 struct LocalBundleAdjustmentRecord {
   int keyframes = 0, fixed_keyframes = 0, points = 0, observations = 0;
   int iterations = 0;

@@ -15,9 +15,12 @@
 namespace stillslam {
 
 struct MapperBusyModelOptions {
-  double keyframe_ms = 20;                 // registration, triangulation, fusion, culling
+  double keyframe_ms = 20;  // registration, triangulation, fusion, culling
+  // Kept at the Ceres solver's CPU fit although the Schur solver needs ~4x
+  // less: refit to its CPU (1.7, 0.18), deterministic hs took 19.5 keyframes/s
+  // against 8.2 threaded; these give 6.9 (bench/README.md, "Issue #21, session 9").
   double observation_us = 6;               // per local-BA observation: gathering, setup, apply
-  double observation_iteration_us = 0.75;  // per observation and Ceres iteration
+  double observation_iteration_us = 0.75;  // per observation and solver iteration
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -26,7 +29,7 @@ class MapperBusyModel {
  public:
   explicit MapperBusyModel(MapperBusyModelOptions options = {});
   // The modelled cost of one keyframe whose local BA had `observations`
-  // observations and ran `iterations` Ceres iterations (0, 0: no BA).
+  // observations and ran `iterations` solver iterations (0, 0: no BA).
   double busy_ms(int observations, int iterations) const;
   // A keyframe that arrived at `arrival` (input timestamp, seconds) keeps
   // the mapper busy for `busy_ms`. Arrivals come in order.
