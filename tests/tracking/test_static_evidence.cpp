@@ -309,6 +309,7 @@ struct MovedClusterFrame {
 TEST(MotionPrior, HoldsThePredictionAgainstAClusterWithEvidence) {
   const MovedClusterFrame scene;
   MotionPriorOptions options;
+  options.refit = false;  // the gate alone
   options.sigma_translation = 0;  // off
   bool applied = true;
   const double off = scene.error(options, &applied);
@@ -325,6 +326,7 @@ TEST(MotionPrior, HoldsThePredictionAgainstAClusterWithEvidence) {
 TEST(MotionPrior, GateAppliesThePriorOnlyBeyondItsDistance) {
   const MovedClusterFrame scene;
   MotionPriorOptions options;
+  options.refit = false;  // the gate alone
   options.sigma_translation = 0;  // off
   bool applied = false;
   const double off = scene.error(options, &applied);
@@ -378,6 +380,7 @@ TEST(MotionPrior, RefitKeepsThePriorOnlyWhenTheRejectedPointsMovedThePose) {
   MotionPriorOptions options;
   options.sigma_translation = 0.001;
   options.gate = 0.02;
+  options.refit = false;
   MotionPriorStep step;
   // Static scene, prediction 3 cm off: the prior pulls the pose towards it.
   const OffPredictionFrame still;
@@ -410,8 +413,11 @@ TEST(MotionPrior, RefitKeepsThePriorOnlyWhenTheRejectedPointsMovedThePose) {
 
 TEST(MotionPrior, OffWithoutSigmaAndOptionsAreChecked) {
   MotionPriorOptions options;
-  EXPECT_FALSE(options.enabled());  // off by default; gate 2 cm when on
+  EXPECT_TRUE(options.enabled());  // 1 mm, gate 2 cm, refit check
+  EXPECT_EQ(options.sigma_translation, 0.001);
   EXPECT_EQ(options.gate, 0.02);
+  EXPECT_TRUE(options.refit);
+  options.sigma_translation = 0;
   EXPECT_FALSE(motion_prior(Eigen::Isometry3d::Identity(), options));
   options.sigma_translation = 0.002;
   options.sigma_rotation = 0.03;

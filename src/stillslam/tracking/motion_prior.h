@@ -15,12 +15,11 @@
 namespace stillslam {
 
 struct MotionPriorOptions {
-  // Tracking.motionPriorSigma: m, on the camera centre; 0: no prior (the
-  // default). With 1 mm and the 2 cm gate it fixes the issue #20 renders with
-  // --no-segmentation (wx 0.37 -> 0.008 m), but together with
-  // LocalMapping.busyModel it lost on the held-out stereo renders (wx21 twin
-  // 1.77x, hs22 with masks 1.25x; bench/README.md, session 8), so it is off.
-  double sigma_translation = 0;
+  // Tracking.motionPriorSigma: m, on the camera centre; 0: no prior. 1 mm
+  // with the 2 cm gate and the refit check: --no-segmentation wx 0.37 m ->
+  // 5 mm (RGB-D), n1 stereo 0.21 -> 0.048 m, stereo twins 0.97-1.00x
+  // (bench/README.md, session 9).
+  double sigma_translation = 0.001;
   // Tracking.motionPriorRotationSigma: rad.
   double sigma_rotation = 0.01;
   // Tracking.motionPriorDeadZone: m; camera-centre offsets from the
@@ -39,7 +38,7 @@ struct MotionPriorOptions {
   // not because the points as a whole disagree with it. On stereo the raw
   // frame poses jitter by mm, and a constant-velocity prediction from two of
   // them lands 2-4 cm off on static scenes (bench/README.md, session 9).
-  bool refit = false;
+  bool refit = true;
   bool enabled() const { return sigma_translation > 0; }
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
