@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <random>
 #include <vector>
 
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/geometry/se3.h"
 #include "stillslam/optimize/bundle_adjustment.h"
 #include "stillslam/optimize/pose_optimizer.h"
@@ -171,12 +171,6 @@ BENCHMARK(BM_LocalBundleAdjustment)
     ->Args({20, 1400, 1, 0, 1, 3})
 ->Unit(benchmark::kMillisecond);
 
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
   return v[v.size() / 2];
@@ -203,9 +197,9 @@ void BM_LocalBaSolvers(benchmark::State& state) {
   for (auto _ : state) {
     for (const BaSolver solver : {BaSolver::Ceres, BaSolver::Schur}) {
       options.solver = solver;
-      const double t0 = thread_cpu_ms();
+      const ThreadCpuStopwatch cpu;
       const BundleAdjustmentResult r = bundle_adjust(cam, s.keyframes, s.points, s.observations, options);
-      const double ms = thread_cpu_ms() - t0;
+      const double ms = cpu.elapsed_ms();
       benchmark::DoNotOptimize(r.points);
       (solver == BaSolver::Ceres ? ceres_ms : schur_ms).push_back(ms);
       (solver == BaSolver::Ceres ? ceres_cost : schur_cost) = r.final_cost;

@@ -11,7 +11,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -22,10 +21,12 @@
 #include <string>
 #include <vector>
 
+#include "load_average.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 #include "stillslam/segmentation/segmentation_worker.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
+#include "stillslam/system/process_cpu_time.h"
 
 namespace fs = std::filesystem;
 using namespace stillslam;
@@ -39,18 +40,7 @@ double median(std::vector<double> v) {
 
 // CPU time of the whole process: unlike wall-clock time it barely depends on what
 // other processes on a shared machine are doing.
-double process_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double l = 0;
-  in >> l;
-  return l;
-}
+double process_cpu_ms() { return 1e3 * process_cpu_seconds(); }
 
 SegmentationOptions options_for(const std::string& model, int threads) {
   SegmentationOptions o;

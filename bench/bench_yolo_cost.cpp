@@ -13,36 +13,23 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 
-#include <time.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "load_average.h"
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/io/dataset.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
 #include "stillslam/settings/settings.h"
+#include "stillslam/system/process_cpu_time.h"
 
 using namespace stillslam;
 
 namespace {
-
-double cpu_ms(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double l = 0;
-  in >> l;
-  return l;
-}
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
@@ -88,13 +75,14 @@ int main(int argc, char** argv) {
       for (const cv::Mat& image : images) {
         for (int t : threads) {
           cv::setNumThreads(t);
-          const double p0 = cpu_ms(CLOCK_PROCESS_CPUTIME_ID), t0 = cpu_ms(CLOCK_THREAD_CPUTIME_ID);
+          const double p0 = process_cpu_seconds();
+          const ThreadCpuStopwatch thread_cpu;
           Stopwatch wall;
           segmenter.segment(image);
           if (r == 0) continue;
           costs[t].wall.push_back(wall.elapsed_ms());
-          costs[t].process_cpu.push_back(cpu_ms(CLOCK_PROCESS_CPUTIME_ID) - p0);
-          costs[t].thread_cpu.push_back(cpu_ms(CLOCK_THREAD_CPUTIME_ID) - t0);
+          costs[t].process_cpu.push_back(1e3 * (process_cpu_seconds() - p0));
+          costs[t].thread_cpu.push_back(thread_cpu.elapsed_ms());
         }
       }
     }
