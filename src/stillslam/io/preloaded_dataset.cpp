@@ -17,11 +17,12 @@ Error too_big(std::size_t frames, std::size_t bytes, std::size_t max_bytes) {
                ": raise --preload-limit-mb, preload fewer frames (--max-frames), or run without --preload");
 }
 
-}  // namespace
-
+// Bytes of pixel data a frame holds (colour, gray, right, depth).
 std::size_t frame_bytes(const SensorFrame& frame) {
   return mat_bytes(frame.color) + mat_bytes(frame.gray) + mat_bytes(frame.right) + mat_bytes(frame.depth);
 }
+
+}  // namespace
 
 PreloadedDataset::PreloadedDataset(const Dataset& source, std::size_t first, std::size_t end, std::size_t max_bytes)
     : source_(source), first_(std::min(first, source.size())) {

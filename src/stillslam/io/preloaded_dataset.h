@@ -16,9 +16,6 @@
 
 namespace stillslam {
 
-// Bytes of pixel data a frame holds (colour, gray, right, depth).
-std::size_t frame_bytes(const SensorFrame& frame);
-
 class PreloadedDataset final : public Dataset {
  public:
   // Throws Error when frames [first, end) would need more than max_bytes.

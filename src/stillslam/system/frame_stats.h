@@ -5,6 +5,7 @@
 #include <string>
 
 #include "stillslam/tracking/frame_builder.h"
+#include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/tracking_state.h"
 
 namespace stillslam {
@@ -19,10 +20,7 @@ struct FrameStats {
   int inliers = 0;
   bool keyframe = false;
   bool keyframe_deferred = false;  // due, but the mask was older than Segmentation.keyframeMaskAge
-  int motion_prior_applied = 0;      // pose stages that used the motion prior (TrackingResult)
-  double motion_prior_offset = -1;   // m, TrackingResult::motion_prior_offset
-  double motion_prior_rejected = -1;  // TrackingResult::motion_prior_rejected
-  double motion_prior_refit_offset = -1;  // m, TrackingResult::motion_prior_refit_offset
+  MotionPriorFrame motion_prior;  // TrackingResult::motion_prior
   int fresh_mask_culled = 0;  // map points culled when an earlier frame's own mask arrived (fresh_mask_check.h)
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
   double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)

@@ -362,10 +362,7 @@ FrameStats System::process(const SensorFrame& input) {
   stats.inliers = result.inliers;
   stats.keyframe = result.new_keyframe;
   stats.keyframe_deferred = result.keyframe_deferred;
-  stats.motion_prior_applied = result.motion_prior_applied;
-  stats.motion_prior_offset = result.motion_prior_offset;
-  stats.motion_prior_rejected = result.motion_prior_rejected;
-  stats.motion_prior_refit_offset = result.motion_prior_refit_offset;
+  stats.motion_prior = result.motion_prior;
   stats.build.motion.sparse_view = static_cast<int>(result.sparse_view);
   if (motion_stage_) {
     std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());

@@ -1,5 +1,6 @@
 #include "stillslam/tracking/motion_prior.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "stillslam/core/option_check.h"
@@ -58,6 +59,13 @@ int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const
   frame.set_pose(free_pose);
   for (std::size_t i = 0; i < frame.size(); ++i) frame.set_outlier(i, free_outlier[i]);
   return free_inliers;
+}
+
+void MotionPriorFrame::add(const MotionPriorStep& step) {
+  applied += step.applied ? 1 : 0;
+  offset = std::max(offset, step.offset);
+  rejected_share = std::max(rejected_share, step.rejected_share);
+  refit_offset = std::max(refit_offset, step.refit_offset);
 }
 
 void MotionPriorOptions::check() const {

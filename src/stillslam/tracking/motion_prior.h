@@ -61,6 +61,16 @@ struct MotionPriorStep {
   double refit_offset = -1;
 };
 
+// A frame's pose stages together: how many used the prior, and the largest
+// of each figure (-1: no stage had it).
+struct MotionPriorFrame {
+  int applied = 0;
+  double offset = -1;
+  double rejected_share = -1;
+  double refit_offset = -1;
+  void add(const MotionPriorStep& step);
+};
+
 // refine_pose_on_evidence (static_evidence.h) with the prior and its gate;
 // without a prior it is refine_pose_on_evidence. `step` (optional) tells
 // what the gate saw. Returns the number of inliers.

@@ -423,10 +423,7 @@ int Tracker::refine_stage_pose(Frame& frame, TrackingResult& result) {
   MotionPriorStep step;
   const int inliers =
       refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior, &step);
-  result.motion_prior_applied += step.applied ? 1 : 0;
-  result.motion_prior_offset = std::max(result.motion_prior_offset, step.offset);
-  result.motion_prior_rejected = std::max(result.motion_prior_rejected, step.rejected_share);
-  result.motion_prior_refit_offset = std::max(result.motion_prior_refit_offset, step.refit_offset);
+  result.motion_prior.add(step);
   return inliers;
 }
 

@@ -41,15 +41,7 @@ struct TrackingResult {
   bool keyframe_deferred = false;
   bool relocalized = false;  // recovered from Lost by relocalization (reason "relocalized")
   SparseView sparse_view = SparseView::None;  // the crowd fallback's action (tracking/sparse_view.h)
-  // The motion prior (tracking/motion_prior.h) in this frame's pose stages:
-  // how many used it, and the largest offset of a stage's pose without it
-  // from the prediction (m; -1: the gate did not look).
-  int motion_prior_applied = 0;
-  double motion_prior_offset = -1;
-  // Largest share of a stage's inliers without the prior that the pose with
-  // it rejected (-1: the gate never fired).
-  double motion_prior_rejected = -1;
-  double motion_prior_refit_offset = -1;  // m, largest MotionPriorStep::refit_offset
+  MotionPriorFrame motion_prior;  // the motion prior in this frame's pose stages (tracking/motion_prior.h)
   // When Ok: the frame's reference keyframe and its pose relative to it, taken
   // under the map lock (local BA may move the keyframe right after).
   KeyFramePtr reference;
