@@ -234,3 +234,40 @@ TEST(AsyncMasks, HeldInstancesMoveWithTheCamera) {
 
 }  // namespace
 }  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+// Segmentation.keyframeHold: keyframes made from frames 4 and 6 (masks
+// carried) send those frames to the stage after tracking; each gets its own
+// mask `latency` (3) processed frames later, and while one is awaited and the
+// stage is busy the interval rule makes no request (a threaded stage would
+// replace the awaited one).
+TEST(AsyncMasks, SegmentLastGivesTheFrameItsOwnMaskAndIsNotReplaced) {
+  auto gate = std::make_shared<test::Gate>();
+  auto stage = make_stage(gate, false);
+  AsyncMasks masks(*stage, options(3, 3, 15));
+  std::vector<int> sources;
+  std::vector<ScheduleReason> reasons;
+  for (std::size_t f = 0; f < 12; ++f) {
+    const FrameMask m = masks.mask_for(image(), f);
+    sources.push_back(test::square_x(m.mask));
+    reasons.push_back(m.scheduled);
+    if (f == 3) {
+      EXPECT_FALSE(masks.segment_last(image(), 3));  // the interval rule sent it already
+    }
+    if (f == 4 || f == 6) {
+      EXPECT_TRUE(masks.segment_last(image(), f));
+    }
+  }
+  using R = ScheduleReason;
+  // Without the guard frame 7 (4 + 3) would have gone by the interval rule;
+  // with it the next interval request is at 9, after frame 6's mask came.
+  EXPECT_EQ(gate->segmented, (std::vector<std::size_t>{0, 3, 4, 6, 9}));
+  EXPECT_EQ(sources, (std::vector<int>{0, 0, 0, 0, 0, 0, 3, 4, 4, 6, 6, 6}));
+  EXPECT_EQ(reasons, (std::vector<R>{R::First, R::None, R::None, R::Interval, R::None, R::None, R::None, R::None,
+                                     R::None, R::Interval, R::None, R::None}));
+}
+
+}  // namespace
+}  // namespace stillslam

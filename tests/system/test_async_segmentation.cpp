@@ -1,7 +1,8 @@
 // Segmentation.mode async through the whole system on a short generated
 // sequence, deterministic: the stats fields (mask age, fresh or carried,
 // requests, skips) per frame and in stats.json, no keyframe from a frame with
-// a mask older than the bound, and bit-for-bit repeatable runs.
+// a mask older than the bound, and bit-for-bit repeatable runs. With
+// Segmentation.keyframeHold: such keyframes are made, held and checked.
 #include <gtest/gtest.h>
 
 #include "stillslam/system/realtime_summary.h"
@@ -32,7 +33,25 @@ const test::SimSequence& sequence() {
   return seq;
 }
 
-RunResult run_async(const test::SimSequence& seq) {
+// One "person" that jumps: a 40x40 square 8 px further right in every frame,
+// so a carried mask misses where the frame's own mask is.
+class JumpingPerson final : public Segmenter {
+ public:
+  std::vector<Detection> segment(const cv::Mat& bgr) override { return segment_frame(bgr, 0); }
+  std::vector<Detection> segment_frame(const cv::Mat& bgr, std::size_t frame_index) override {
+    const int x = static_cast<int>(8 * frame_index) % (bgr.cols - 40);
+    Detection d;
+    d.class_id = 0;
+    d.class_name = "person";
+    d.score = 1.f;
+    d.box = cv::Rect2f(static_cast<float>(x), 100, 40, 40);
+    d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
+    d.mask(cv::Rect(x, 100, 40, 40)).setTo(255);
+    return {d};
+  }
+};
+
+RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false) {
   Settings settings = seq.settings;
   settings.tracking.init_min_keypoints = 300;
   settings.segmentation.enabled = true;
@@ -41,10 +60,14 @@ RunResult run_async(const test::SimSequence& seq) {
   settings.segmentation.modelled_latency = 2;
   settings.segmentation.keyframe_mask_age = 2;
   settings.segmentation.max_mask_age = 8;
-  settings.segmentation.fresh_mask_cull = true;  // its path repeats bit for bit too
+  settings.segmentation.fresh_mask_cull = !keyframe_hold;  // its path repeats bit for bit too
+  settings.segmentation.keyframe_hold = keyframe_hold;
   SystemOptions options;
   options.deterministic = true;
-  options.segmenter_factory = [] { return std::make_unique<CornerPerson>(); };
+  options.segmenter_factory = [keyframe_hold]() -> std::unique_ptr<Segmenter> {
+    if (keyframe_hold) return std::make_unique<JumpingPerson>();
+    return std::make_unique<CornerPerson>();
+  };
   System system(settings, SensorType::Rgbd, seq.stereo, options);
   RunResult out;
   for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
@@ -114,6 +137,35 @@ TEST(AsyncSegmentation, DeterministicRunsRepeatBitForBit) {
   for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
     EXPECT_TRUE(a.trajectory[i].T_world_cam.matrix() == b.trajectory[i].T_world_cam.matrix()) << i;
   }
+}
+
+// Keyframes due on frames with masks older than keyframeMaskAge (2) are made
+// and held instead of deferred; each such frame goes to the segmenter, and
+// when its own mask comes the held keyframe's points inside it go.
+TEST(AsyncSegmentation, KeyframeHoldMakesTheKeyframesAndChecksThemWithTheirOwnMasks) {
+  const RunResult r = run_async(sequence(), true);
+  std::size_t held = 0, keyframes = 0;
+  int removed = 0;
+  for (const FrameStats& f : r.frames) {
+    EXPECT_FALSE(f.keyframe_deferred) << f.index;
+    keyframes += f.keyframe;
+    removed += f.held_points_removed;
+    if (!f.keyframe_held) continue;
+    ++held;
+    EXPECT_TRUE(f.keyframe) << f.index;
+    EXPECT_GT(f.build.mask_age, 2) << f.index;
+    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
+  }
+  EXPECT_GE(held, 2u);
+  EXPECT_GT(removed, 0);  // the jumping square covered keypoints of held keyframes
+  EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
+  // Every keyframe reached local mapping (the last ones at shutdown; the map's
+  // first keyframe may be of an earlier frame than the one that started it).
+  EXPECT_GE(static_cast<std::size_t>(r.mapper.keyframes), keyframes);
+  EXPECT_LE(static_cast<std::size_t>(r.mapper.keyframes), keyframes + 1);
+  const nlohmann::json stats = run_result_json(r, {});
+  EXPECT_EQ(stats["summary"]["realtime"]["masks"]["keyframes_held"].get<std::size_t>(), held);
+  EXPECT_EQ(stats["frames"][0]["keyframe_held"].get<bool>(), r.frames[0].keyframe_held);
 }
 
 }  // namespace

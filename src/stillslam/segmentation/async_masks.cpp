@@ -130,6 +130,15 @@ void AsyncMasks::wait_for(std::size_t frame_index) {
   }
 }
 
+bool AsyncMasks::segment_last(const cv::Mat& bgr, std::size_t frame_index) {
+  needed_ = frame_index;
+  const std::optional<std::size_t> last = stage_.last_submitted();
+  if (last && *last == frame_index) return false;
+  scheduler_.record_request(processed_ - 1);
+  submit(bgr, frame_index);
+  return true;
+}
+
 cv::Mat1b AsyncMasks::carried(const SegmentationResult& result, int age) const {
   const int grow = std::min(age * options_.grow_px_per_frame, options_.max_grow_px);
   if (age == 0 || grow == 0 || result.dynamic_mask.empty() || cv::countNonZero(result.dynamic_mask) == 0) {
@@ -148,7 +157,9 @@ FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, cons
   pending_depth_ = depth;
   const std::size_t ordinal = processed_++;
   collect(ordinal);
-  out.scheduled = scheduler_.decide(ordinal, stage_busy());
+  if (needed_ && fresh_ && fresh_->frame_index >= *needed_) needed_.reset();
+  // A held keyframe's request must not be replaced before the stage takes it.
+  if (!needed_ || !stage_busy()) out.scheduled = scheduler_.decide(ordinal, stage_busy());
   if (out.scheduled != ScheduleReason::None) submit(bgr, frame_index);
   collect(ordinal);  // deterministic with no latency: this frame's own result
 

@@ -77,6 +77,13 @@ class AsyncMasks {
   // candidate deferred for an old mask, weak tracking).
   void request_urgent() { scheduler_.request_urgent(); }
 
+  // After tracking the frame of the last mask_for() call: a keyframe made
+  // from it waits for its own mask (tracking/keyframe_hold.h), so it goes to
+  // the stage now unless it already did. Until that mask is fresh, no other
+  // request is made while the stage is busy (a threaded stage would drop the
+  // queued one). Returns whether it was submitted now.
+  bool segment_last(const cv::Mat& bgr, std::size_t frame_index);
+
   // The newest result usable at the last mask_for() call (null before the first).
   const std::shared_ptr<const SegmentationResult>& fresh() const { return fresh_; }
 
@@ -100,6 +107,7 @@ class AsyncMasks {
   AsyncMaskOptions options_;
   SegmentationScheduler scheduler_;
   std::shared_ptr<const SegmentationResult> fresh_;
+  std::optional<std::size_t> needed_;  // segment_last(): the frame whose own mask is awaited
   // Deterministic: results segmented but not usable yet (modelled latency).
   std::deque<std::shared_ptr<const SegmentationResult>> pending_;
   // Ages count processed frames: each mask_for() call is one; the ordinal of

@@ -43,6 +43,10 @@ struct SegmentationOptions {
   // Async: Segmentation.keyframeMaskAge, tracking makes no keyframe from a
   // frame whose mask is older; it asks for the next segmentation slot.
   int keyframe_mask_age = 6;
+  // Async: Segmentation.keyframeHold, instead the keyframe is made and held
+  // from local mapping until its frame's own mask (requested for it) arrives
+  // (tracking/keyframe_hold.h).
+  bool keyframe_hold = false;
   // Async with --deterministic: Segmentation.modelledLatency, the mask of
   // frame k is usable from frame k + this on (the segmenter's time in frames),
   // independent of timing.

@@ -11,6 +11,7 @@ const char* to_string(ScheduleReason reason) {
     case ScheduleReason::Interval: return "interval";
     case ScheduleReason::Urgent: return "urgent";
     case ScheduleReason::Waiting: return "waiting";
+    case ScheduleReason::Keyframe: return "keyframe";
   }
   return "none";
 }

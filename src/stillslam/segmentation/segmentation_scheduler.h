@@ -13,7 +13,9 @@
 namespace stillslam {
 
 // Waiting: not by the rules; the frame's newest mask was too old (async_masks.h).
-enum class ScheduleReason { None, First, Interval, Urgent, Waiting };
+// Keyframe: after tracking, a keyframe made from the frame waits for its own mask
+// (Segmentation.keyframeHold, tracking/keyframe_hold.h).
+enum class ScheduleReason { None, First, Interval, Urgent, Waiting, Keyframe };
 const char* to_string(ScheduleReason reason);
 
 class SegmentationScheduler {

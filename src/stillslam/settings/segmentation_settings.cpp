@@ -94,6 +94,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("maxGrowPx", options.max_grow_px, "SegmentationOptions.max_grow_px", {0, 1000});
   keys.integer("urgentInliers", options.urgent_inliers, "SegmentationOptions.urgent_inliers", {0, 100000});
   keys.flag("freshMaskCull", options.fresh_mask_cull);
+  keys.flag("keyframeHold", options.keyframe_hold);
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

@@ -23,6 +23,7 @@ RealtimeSummary summarize_realtime(const RunResult& result) {
     if (f.build.segmentation_request != ScheduleReason::None) ++s.segmentation_requests;
     s.segmentation_skips = std::max(s.segmentation_skips, f.build.segmentation_skips);
     if (f.keyframe_deferred) ++s.keyframes_deferred;
+    if (f.keyframe_held) ++s.keyframes_held;
   }
   s.latency_ms = summarize_times(latency);
   if (!latency.empty()) {
@@ -54,6 +55,7 @@ nlohmann::json to_json(const RealtimeSummary& s) {
             {"max_age", s.max_mask_age},
             {"frames_waited", s.waited_frames},
             {"keyframes_deferred", s.keyframes_deferred},
+            {"keyframes_held", s.keyframes_held},
             {"segmentation_requests", s.segmentation_requests},
             {"segmentation_skips", s.segmentation_skips}}}};
 }

@@ -22,7 +22,8 @@ struct RealtimeSummary {
   // Masks: frames with a mask of their own (age 0), carried ones, the mean
   // and largest age, frames that waited for a mask, requests to the
   // asynchronous stage and how many it skipped as stale.
-  std::size_t fresh_masks = 0, carried_masks = 0, waited_frames = 0, keyframes_deferred = 0;
+  std::size_t fresh_masks = 0, carried_masks = 0, waited_frames = 0, keyframes_deferred = 0,
+              keyframes_held = 0;
   double mean_mask_age = 0;
   int max_mask_age = 0;
   std::size_t segmentation_requests = 0, segmentation_skips = 0;

@@ -125,6 +125,8 @@ nlohmann::json to_json(const FrameStats& f) {
           {"map_id", f.map_id},
           {"keyframe", f.keyframe},
           {"keyframe_deferred", f.keyframe_deferred},
+          {"keyframe_held", f.keyframe_held},
+          {"held_points_removed", f.held_points_removed},
           {"motion_prior", {{"applied", f.motion_prior.applied}, {"offset_m", f.motion_prior.offset},
                             {"rejected_share", f.motion_prior.rejected_share},
                             {"refit_offset_m", f.motion_prior.refit_offset}}},

@@ -115,6 +115,8 @@ void System::build_pipeline(const Settings& settings) {
                                                   std::move(propagator), settings.segmentation.mask_dilation);
       urgent_inliers_ = settings.segmentation.urgent_inliers;
       if (settings.segmentation.fresh_mask_cull) fresh_mask_check_ = std::make_unique<FreshMaskCheck>();
+      if (settings.segmentation.keyframe_hold) keyframe_hold_ = std::make_unique<KeyframeHold>();
+      keyframe_mask_age_ = settings.segmentation.keyframe_mask_age;
     } else {
       segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
                                                            settings.segmentation.mask_dilation, hold);
@@ -173,7 +175,7 @@ void System::build_pipeline(const Settings& settings) {
   // mapping; relocalization in the active map when lost.
   LocalMapper* mapper = mapper_.get();
   LocalMappingLink link;
-  link.insert_keyframe = [mapper](KeyFramePtr kf) { mapper->insert_keyframe(std::move(kf)); };
+  link.insert_keyframe = [this](KeyFramePtr kf) { on_new_keyframe(std::move(kf)); };
   link.accepts_keyframes = [mapper](double now) { return mapper->accepts_keyframes(now); };
   link.queued_keyframes = [mapper](double now) { return mapper->queued_keyframes(now); };
   link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
@@ -196,7 +198,8 @@ void System::build_pipeline(const Settings& settings) {
   tracking.localization_only = options_.localization_only;
   tracking.probe = options_.tracking_probe;
   tracking.sparse_view = settings.motion.sparse_view;
-  if (async_masks_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
+  // Held keyframes are checked later instead of deferred.
+  if (async_masks_ && !keyframe_hold_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 
@@ -261,7 +264,42 @@ void System::move_stages_to_active_map() {
   if (loop_closer_) loop_closer_->switch_map(map);
 }
 
+void System::on_new_keyframe(KeyFramePtr kf) {
+  if (!keyframe_hold_) {
+    mapper_->insert_keyframe(std::move(kf));
+    return;
+  }
+  // Only a keyframe of the frame being tracked has a mask age (a map started
+  // from an earlier frame passes).
+  if (tracked_frame_ && kf->frame_id() == tracked_frame_->id() && tracked_mask_age_ > keyframe_mask_age_) {
+    std::vector<cv::Point2f> pixels;
+    pixels.reserve(tracked_frame_->size());
+    for (const cv::KeyPoint& k : tracked_frame_->keypoints_raw()) pixels.push_back(k.pt);
+    keyframe_hold_->hold(std::move(kf), tracked_index_, std::move(pixels));
+    segment_tracked_ = true;
+    return;
+  }
+  for (KeyFramePtr& k : keyframe_hold_->pass(std::move(kf))) mapper_->insert_keyframe(std::move(k));
+}
+
+int System::release_held_keyframes() {
+  if (!keyframe_hold_ || keyframe_hold_->empty() || !async_masks_->fresh()) return 0;
+  const SegmentationResult& fresh = *async_masks_->fresh();
+  KeyframeHoldRelease released;
+  {
+    std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+    // The mask a frame segmented for itself would have had (held-over instances, dilation).
+    released = keyframe_hold_->release(fresh.frame_index, {fresh.dynamic_mask});
+  }
+  for (KeyFramePtr& kf : released.keyframes) mapper_->insert_keyframe(std::move(kf));
+  return released.culled + released.unlinked;
+}
+
 void System::shutdown() {
+  // Held keyframes go unchecked: no more masks come.
+  if (keyframe_hold_) {
+    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
+  }
   // Local mapping first: the keyframes it still finishes reach loop closing,
   // which indexes them before it stops.
   mapper_->stop();
@@ -271,6 +309,10 @@ void System::shutdown() {
 }
 
 void System::start_new_map() {
+  // The old map's held keyframes go to local mapping before it switches maps.
+  if (keyframe_hold_) {
+    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
+  }
   const std::uint64_t old_id = atlas_->active_map_id();
   Map& map = atlas_->create_map();
   spdlog::info("atlas: tracking lost for {} frames, map {} kept, new map {} starts", lost_frames_, old_id,
@@ -304,6 +346,9 @@ void System::detect_and_merge() {
 
 bool System::merge_into(Map& target, const LoopDetection& detection) {
   Map& source = atlas_->active_map();
+  if (keyframe_hold_) {
+    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
+  }
   // Nothing may change either map while they are merged.
   mapper_->flush();
   if (loop_closer_) loop_closer_->flush();
@@ -351,9 +396,14 @@ FrameStats System::process(const SensorFrame& input) {
       fresh_mask_check_->apply(fresh.frame_index, {});
     }
   }
+  stats.held_points_removed = release_held_keyframes();
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
+  tracked_frame_ = &frame;
+  tracked_index_ = input.index;
+  tracked_mask_age_ = stats.build.mask_age;
   const TrackingResult result = tracker_->track(frame);
+  tracked_frame_ = nullptr;
   stats.tracking_ms = tracking.elapsed_ms();
   stats.tracking_cpu_ms = tracking_cpu.elapsed_ms();
   stats.state = result.state;
@@ -371,6 +421,12 @@ FrameStats System::process(const SensorFrame& input) {
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
+  if (segment_tracked_) {
+    // The held keyframe's frame gets its own mask.
+    segment_tracked_ = false;
+    stats.keyframe_held = true;
+    if (async_masks_->segment_last(input.color, input.index)) stats.build.segmentation_request = ScheduleReason::Keyframe;
+  }
   if (async_masks_) {
     std::optional<Eigen::Isometry3d> pose;
     if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();

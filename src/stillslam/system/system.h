@@ -49,6 +49,7 @@
 #include "stillslam/system/trajectory_refinement.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/fresh_mask_check.h"
+#include "stillslam/tracking/keyframe_hold.h"
 #include "stillslam/tracking/motion_stage.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker.h"
@@ -200,6 +201,18 @@ class System {
   std::unique_ptr<SegmentationStage> segmentation_stage_;
   std::unique_ptr<AsyncMasks> async_masks_;
   std::unique_ptr<FreshMaskCheck> fresh_mask_check_;  // Segmentation.freshMaskCull
+  // Segmentation.keyframeHold: keyframes from frames with masks older than
+  // keyframe_mask_age_ wait here for their own masks before local mapping.
+  std::unique_ptr<KeyframeHold> keyframe_hold_;
+  int keyframe_mask_age_ = 0;
+  const Frame* tracked_frame_ = nullptr;  // during tracker_->track(): the frame and its mask age
+  std::size_t tracked_index_ = 0;
+  int tracked_mask_age_ = 0;
+  bool segment_tracked_ = false;  // a keyframe of it was held: it goes to the segmenter
+  // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes.
+  void on_new_keyframe(KeyFramePtr kf);
+  // Releases the held keyframes the newest segmentation result allows; returns the points removed.
+  int release_held_keyframes();
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;

@@ -1,0 +1,67 @@
+#include "stillslam/tracking/keyframe_hold.h"
+
+#include <algorithm>
+
+namespace stillslam {
+namespace {
+
+bool on_instance(const std::vector<cv::Mat1b>& instances, const cv::Point2f& pixel) {
+  const cv::Point p(cvRound(pixel.x), cvRound(pixel.y));
+  return std::any_of(instances.begin(), instances.end(), [&](const cv::Mat1b& m) {
+    return cv::Rect(0, 0, m.cols, m.rows).contains(p) && m(p) != 0;
+  });
+}
+
+}  // namespace
+
+void KeyframeHold::hold(KeyFramePtr kf, std::size_t frame_index, std::vector<cv::Point2f> raw_pixels) {
+  queue_.push_back({std::move(kf), true, frame_index, std::move(raw_pixels)});
+}
+
+std::vector<KeyFramePtr> KeyframeHold::pass(KeyFramePtr kf) {
+  if (queue_.empty()) return {std::move(kf)};
+  queue_.push_back({std::move(kf), false, 0, {}});
+  return {};
+}
+
+std::size_t KeyframeHold::held() const {
+  return static_cast<std::size_t>(std::count_if(queue_.begin(), queue_.end(), [](const Entry& e) { return e.held; }));
+}
+
+KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::vector<cv::Mat1b>& instances) {
+  KeyframeHoldRelease out;
+  while (!queue_.empty() && (!queue_.front().held || queue_.front().frame_index <= frame_index)) {
+    Entry e = std::move(queue_.front());
+    queue_.pop_front();
+    if (e.held && e.frame_index < frame_index) ++out.unchecked;
+    if (e.held && e.frame_index == frame_index && !e.kf->is_bad()) {
+      KeyFrame* kf = e.kf.get();
+      for (std::size_t i = 0; i < kf->size() && i < e.raw_pixels.size(); ++i) {
+        const MapPointPtr mp = kf->map_point(i);
+        if (!mp || mp->is_bad() || !on_instance(instances, e.raw_pixels[i])) continue;
+        if (mp->first_keyframe_id() == kf->id()) {
+          mp->set_bad();
+          ++out.culled;
+        } else {
+          kf->erase_map_point(i);
+          mp->erase_observation(kf);
+          ++out.unlinked;
+        }
+      }
+    }
+    out.keyframes.push_back(std::move(e.kf));
+  }
+  return out;
+}
+
+KeyframeHoldRelease KeyframeHold::release_all() {
+  KeyframeHoldRelease out;
+  for (Entry& e : queue_) {
+    out.unchecked += e.held;
+    out.keyframes.push_back(std::move(e.kf));
+  }
+  queue_.clear();
+  return out;
+}
+
+}  // namespace stillslam

@@ -1,0 +1,59 @@
+#pragma once
+// Asynchronous segmentation (Segmentation.mode async) carries masks between
+// segmented frames, so a keyframe due on a frame with an old mask may hold
+// points on people the carried mask missed. With Segmentation.keyframeHold the
+// keyframe is made at once (tracking uses its points, the map stays as dense as
+// with per-frame masks) but reaches local mapping only when its frame's own
+// mask arrives (the frame is segmented for it, async_masks.h segment_last()):
+// first its points inside that mask go (its own new points are culled, its
+// matches to older points are unlinked). Keyframes reach local mapping in the
+// order they were made: a fresh keyframe waits behind held ones.
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include "stillslam/map/keyframe.h"
+
+namespace stillslam {
+
+struct KeyframeHoldRelease {
+  std::vector<KeyFramePtr> keyframes;  // in the order they were made
+  int culled = 0;    // points the held keyframes made inside their own masks
+  int unlinked = 0;  // matches of held keyframes to older points inside their masks
+  int unchecked = 0;  // held keyframes whose own mask never came (a newer one did)
+};
+
+class KeyframeHold {
+ public:
+  // A keyframe made from input frame `frame_index` with a carried mask;
+  // raw_pixels: its keypoints in the image (Frame::keypoints_raw), where the
+  // mask is looked up.
+  void hold(KeyFramePtr kf, std::size_t frame_index, std::vector<cv::Point2f> raw_pixels);
+  // A keyframe from a fresh enough mask: local mapping gets it now, unless a
+  // held one is before it (then it waits behind).
+  // Returns the keyframes to pass on now.
+  std::vector<KeyFramePtr> pass(KeyFramePtr kf);
+  bool empty() const { return queue_.empty(); }
+  std::size_t held() const;
+
+  // The segmentation of input frame `frame_index` is the newest result: its
+  // dynamic instances (frame size, non-zero inside). Releases, in order, the
+  // keyframes up to the first one held for a later frame, checking the one of
+  // `frame_index` against the instances. The caller holds the map's update mutex.
+  KeyframeHoldRelease release(std::size_t frame_index, const std::vector<cv::Mat1b>& instances);
+  // Everything, unchecked (a new map starts, or the run ends).
+  KeyframeHoldRelease release_all();
+
+ private:
+  struct Entry {
+    KeyFramePtr kf;
+    bool held = false;
+    std::size_t frame_index = 0;
+    std::vector<cv::Point2f> raw_pixels;
+  };
+  std::deque<Entry> queue_;
+};
+
+}  // namespace stillslam

@@ -1,0 +1,119 @@
+// KeyframeHold (tracking/keyframe_hold.h): a keyframe made with a carried mask
+// reaches local mapping only when its frame's own mask arrives, with its points
+// inside that mask removed (its own new points culled, matches to older points
+// unlinked); keyframes leave in the order they were made.
+#include <gtest/gtest.h>
+
+#include "map/synthetic_scene.h"
+#include "stillslam/map/map.h"
+#include "stillslam/tracking/keyframe_hold.h"
+
+namespace stillslam {
+namespace {
+
+std::vector<cv::Point2f> pixels_of(const Frame& frame) {
+  std::vector<cv::Point2f> out;
+  for (const cv::KeyPoint& k : frame.keypoints_raw()) out.push_back(k.pt);
+  return out;
+}
+
+TEST(KeyframeHold, ReleasesAtItsOwnMaskWithoutThePointsInside) {
+  test::SyntheticScene scene(400);
+  Map map;
+  // Frame 0's keyframe made a point of every keypoint; two more keyframes saw
+  // them too (so unlinking one observation leaves them good, mono or stereo).
+  Frame f0 = scene.make_frame(0, test::pose_at(0));
+  f0.set_pose(test::pose_at(0));
+  const KeyFramePtr kf0 = map.create_keyframe(f0);
+  const KeyFramePtr kf0b = map.create_keyframe(f0);
+  const KeyFramePtr kf0c = map.create_keyframe(f0);
+  std::vector<MapPointPtr> old_points;
+  for (std::size_t i = 0; i < f0.size(); ++i) {
+    MapPointPtr mp = map.create_map_point(*f0.unproject(i), kf0.get());
+    mp->add_observation(kf0.get(), i);
+    mp->add_observation(kf0b.get(), i);
+    mp->add_observation(kf0c.get(), i);
+    kf0->set_map_point(i, mp);
+    kf0b->set_map_point(i, mp);
+    kf0c->set_map_point(i, mp);
+    old_points.push_back(mp);
+  }
+  // The held keyframe (input frame 7) matched the old points at even
+  // keypoints and made new points at odd ones.
+  Frame f1 = scene.make_frame(1, test::pose_at(0));
+  f1.set_pose(test::pose_at(0));
+  ASSERT_EQ(f1.size(), f0.size());
+  for (std::size_t i = 0; i < f1.size(); i += 2) f1.set_map_point(i, old_points[i]);
+  const KeyFramePtr held = map.create_keyframe(f1);
+  std::vector<MapPointPtr> new_points(f1.size());
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    if (held->map_point(i)) old_points[i]->add_observation(held.get(), i);
+    if (i % 2 == 0) continue;
+    new_points[i] = map.create_map_point(*f1.unproject(i), held.get());
+    new_points[i]->add_observation(held.get(), i);
+    held->set_map_point(i, new_points[i]);
+  }
+  const cv::Size size(f1.setup().camera.width(), f1.setup().camera.height());
+  cv::Mat1b mask = cv::Mat1b::zeros(size);
+  mask(cv::Rect(0, 0, size.width / 4, size.height)).setTo(255);
+  int on_old = 0, on_new = 0;
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    if (f1.keypoints_raw()[i].pt.x < size.width / 4 - 0.5f) (i % 2 == 0 ? on_old : on_new)++;
+  }
+  ASSERT_GT(on_old, 10);
+  ASSERT_GT(on_new, 10);
+
+  KeyframeHold hold;
+  hold.hold(held, 7, pixels_of(f1));
+  const KeyFramePtr fresh = map.create_keyframe(f1);
+  EXPECT_TRUE(hold.pass(fresh).empty());  // behind the held one
+  EXPECT_EQ(hold.held(), 1u);
+  KeyframeHoldRelease r = hold.release(6, {mask});  // an older frame's mask: nothing leaves
+  EXPECT_TRUE(r.keyframes.empty());
+  r = hold.release(7, {mask});
+  ASSERT_EQ(r.keyframes.size(), 2u);
+  EXPECT_EQ(r.keyframes[0], held);
+  EXPECT_EQ(r.keyframes[1], fresh);
+  EXPECT_EQ(r.culled, on_new);
+  EXPECT_EQ(r.unlinked, on_old);
+  EXPECT_EQ(r.unchecked, 0);
+  EXPECT_TRUE(hold.empty());
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    const bool on = mask(cv::Point(cvRound(f1.keypoints_raw()[i].pt.x), cvRound(f1.keypoints_raw()[i].pt.y))) != 0;
+    if (i % 2 == 1) {
+      EXPECT_EQ(new_points[i]->is_bad(), on) << i;
+    } else {
+      EXPECT_FALSE(old_points[i]->is_bad()) << i;  // still seen by frame 0's keyframes
+      EXPECT_EQ(old_points[i]->is_observed_by(held.get()), !on) << i;
+    }
+    EXPECT_EQ(held->map_point(i) == nullptr, on) << i;
+  }
+}
+
+TEST(KeyframeHold, ANewerMaskReleasesUnchecked) {
+  test::SyntheticScene scene(200);
+  Map map;
+  Frame f = scene.make_frame(0, test::pose_at(0));
+  f.set_pose(test::pose_at(0));
+  const KeyFramePtr kf = map.create_keyframe(f);
+  MapPointPtr mp = map.create_map_point(*f.unproject(0), kf.get());
+  mp->add_observation(kf.get(), 0);
+  kf->set_map_point(0, mp);
+  const cv::Size size(f.setup().camera.width(), f.setup().camera.height());
+  KeyframeHold hold;
+  EXPECT_EQ(hold.pass(kf).size(), 1u);  // nothing held: passes at once
+  hold.hold(kf, 5, pixels_of(f));
+  hold.hold(kf, 9, pixels_of(f));
+  // Frame 5's own mask never came (a threaded stage skipped it); frame 8's did.
+  const KeyframeHoldRelease r = hold.release(8, {cv::Mat1b(size, uchar(255))});
+  EXPECT_EQ(r.keyframes.size(), 1u);
+  EXPECT_EQ(r.unchecked, 1);
+  EXPECT_EQ(r.culled, 0);
+  EXPECT_FALSE(mp->is_bad());
+  EXPECT_EQ(hold.held(), 1u);
+  EXPECT_EQ(hold.release_all().unchecked, 1);
+  EXPECT_TRUE(hold.empty());
+}
+
+}  // namespace
+}  // namespace stillslam
