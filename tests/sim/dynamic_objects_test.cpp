@@ -2,6 +2,9 @@
 // facing the camera, dynamic ids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "stillslam/sim/dynamic_objects.h"
 
 namespace stillslam::sim {
@@ -86,6 +89,35 @@ TEST(DynamicObjects, PeopleWhoStopInViewShiftSlowly) {
   }
   EXPECT_EQ(stopping, 2);  // every person but the first stops
   EXPECT_GT(slow_frames, 150);
+}
+
+TEST(DynamicObjects, StillPeopleKeepFacingWhereTheCameraStarted) {
+  // A camera carried 1.2 m sideways: walking people turn with it, a still
+  // person keeps its facing (its texture moves by its sway only, 1 cm).
+  std::vector<TimedPose> path;
+  for (double t = 0; t <= 10 + 1e-9; t += 0.1) {
+    path.push_back({t, look_at(kCamera + Eigen::Vector3d(0.12 * t - 0.6, 0, 0), SceneLayout::desk_centre())});
+  }
+  DynamicObjectsOptions o;
+  o.walking = 1;
+  o.still = 1;
+  o.duration = 10;
+  const DynamicObjects dyn(o, Eigen::Isometry3d::Identity(), path, people_textures(),
+                           std::vector<cv::Size>(4, cv::Size(640, 480)), 3);
+  ASSERT_EQ(dyn.people().size(), 2u);
+  ASSERT_TRUE(dyn.people()[1].still);
+  const std::vector<Quad> start = dyn.quads_at(0, path.front().T_world_cam);
+  const std::vector<Quad> end = dyn.quads_at(10, path.back().T_world_cam);
+  const auto turn = [](const Quad& a, const Quad& b) {
+    return std::acos(std::clamp(a.axis_u.normalized().dot(b.axis_u.normalized()), -1.0, 1.0));
+  };
+  EXPECT_LT(turn(start[1], end[1]), 1e-6);
+  EXPECT_GT(turn(start[0], end[0]), 0.1);
+  // Its texture's corners move by the sway and bob alone.
+  for (const Quad& q : {start[1], end[1]}) EXPECT_LT((q.origin - start[1].origin).norm(), 0.03);
+  // It faces the camera's start: seen from its front there.
+  const Eigen::Vector3d foot = start[1].origin + start[1].axis_u / 2 + start[1].axis_v;
+  EXPECT_GT(start[1].axis_u.cross(start[1].axis_v).dot(foot - path.front().T_world_cam.translation()), 0);
 }
 
 TEST(DynamicObjects, BoxIsDynamicOnlyWhileCarried) {

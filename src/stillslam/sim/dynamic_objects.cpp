@@ -38,7 +38,8 @@ Eigen::Vector2d dawdle_offset(const WalkingPathPlanner& planner, const WalkingPa
   return Eigen::Vector2d::Zero();
 }
 
-// A person's cut-out standing at `foot` (scene frame), turned to face `cam`,
+// A person's cut-out standing at `foot` (scene frame), turned to face `cam`
+// (for a still person: the camera's start),
 // with the bob and sway of walking (or the slight sway of a still person).
 Quad billboard(int texture, double height, double aspect, V foot, const V& cam, double t, double phase, bool still,
                std::uint16_t id) {
@@ -143,6 +144,9 @@ DynamicObjects::DynamicObjects(const DynamicObjectsOptions& options, const Eigen
     p.still = true;
     const Eigen::Vector3d chair = SceneLayout::chair_front(i % 2);
     p.a = p.b = Eigen::Vector2d(chair.x(), chair.y() - 0.5 * (i / 2));
+    // Turning towards a camera that circles them would move their texture
+    // several centimetres: not still.
+    if (!camera_path.empty()) p.faces = (T_scene_world * camera_path.front().T_world_cam.translation()).head<2>();
     people_.push_back(p);
   }
   if (options.moved_box) {
@@ -256,7 +260,8 @@ std::vector<Quad> DynamicObjects::quads_at(double t, const Eigen::Isometry3d& T_
   std::vector<Quad> out;
   const V cam = T_world_scene_.inverse() * T_world_cam.translation();
   for (const PersonTrack& p : people_) {
-    out.push_back(billboard(p.texture, p.height, p.aspect, person_foot(p, t), cam, t, p.offset, p.still, p.id));
+    const V toward = p.still ? V(p.faces.x(), p.faces.y(), cam.z()) : cam;
+    out.push_back(billboard(p.texture, p.height, p.aspect, person_foot(p, t), toward, t, p.offset, p.still, p.id));
   }
   for (const CrowdMember& m : crowd_) {
     if (const std::optional<V> foot = crowd_foot(m, t)) {

@@ -1,8 +1,10 @@
 #pragma once
-// Everything that moves: people (RGBA billboards at human height, always
-// facing the camera, walking back and forth across the camera's line of sight
+// Everything that moves: people (RGBA billboards at human height, walking
+// ones always facing the camera, walking back and forth across the camera's line of sight
 // with a little bob and sway, see walking_paths.h), people who stay still
-// (seated on the chairs behind the desk, swaying slightly), a box carried
+// (seated on the chairs behind the desk, swaying slightly, facing where the
+// camera starts: a seated person does not turn with a camera carried around
+// them), a box carried
 // across the desk, a chair pushed aside, a crowd walking through close to the
 // camera, and an optional occluder: a person passing right in front of the
 // lens who hides (nearly) the whole view for a while. Each gets its own
@@ -39,6 +41,9 @@ struct PersonTrack {
   Eigen::Vector2d dawdle = Eigen::Vector2d::Zero();
   double offset = 0.0;           // seconds into the back-and-forth cycle at t = 0
   bool still = false;            // stands at `a`, only sways
+  // A still person faces this floor point (scene frame; the camera's start)
+  // whatever the camera does later.
+  Eigen::Vector2d faces = Eigen::Vector2d(0, -1);
   std::uint16_t id = 1;
 };
 
@@ -107,8 +112,9 @@ class DynamicObjects {
                  const std::vector<cv::Size>& texture_sizes, std::uint64_t seed,
                  std::vector<Quad> chair = {});
 
-  // Quads at time t (seconds since the start) in the world frame; billboards
-  // face the camera, the occluder stands in front of it.
+  // Quads at time t (seconds since the start) in the world frame; walking
+  // people's billboards face the camera, still people's where it started, the
+  // occluder stands in front of it.
   std::vector<Quad> quads_at(double t, const Eigen::Isometry3d& T_world_cam) const;
   const std::vector<PersonTrack>& people() const { return people_; }
   const std::vector<WalkingPath>& walking_paths() const { return paths_; }  // one per walking person
