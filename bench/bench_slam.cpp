@@ -199,7 +199,12 @@ std::map<std::string, double> variant_figures(const Args& a, const RunResult& r)
                                   {"mean_mask_age", rt.mean_mask_age},
                                   {"frames_waited", static_cast<double>(rt.waited_frames)},
                                   {"segmentation_skips", static_cast<double>(rt.segmentation_skips)},
-                                  {"keyframes", static_cast<double>(r.keyframes.size())}};
+                                  {"keyframes", static_cast<double>(r.keyframes.size())},
+                                  {"keyframes_deferred", static_cast<double>(rt.keyframes_deferred)},
+                                  {"keyframes_held", static_cast<double>(rt.keyframes_held)}};
+  double held_points_removed = 0;
+  for (const FrameStats& frame : r.frames) held_points_removed += frame.held_points_removed;
+  f["held_points_removed"] = held_points_removed;
   if (const auto ate = ate_rmse(a, r.trajectory)) f["ate_rmse"] = *ate;
   return f;
 }

@@ -19,11 +19,12 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   TempDir dir;
   const Settings d = load_settings(dir.write("d.yaml", kTum));
   EXPECT_EQ(d.segmentation.mode, SegmentationMode::Sync);
-  EXPECT_EQ(d.segmentation.interval, 3);
+  EXPECT_EQ(d.segmentation.interval, 5);
+  EXPECT_EQ(d.segmentation.modelled_latency, 5);
   const Settings s = load_settings(dir.write(
       "a.yaml", kTum + "Segmentation.mode: async\nSegmentation.interval: 5\nSegmentation.maxMaskAge: 12\n"
                        "Segmentation.keyframeMaskAge: 4\nSegmentation.modelledLatency: 2\n"
-                       "Segmentation.urgentInliers: 70\nSegmentation.maxGrowPx: 12\n"));
+                       "Segmentation.urgentInliers: 70\nSegmentation.maxGrowPx: 12\nSegmentation.keyframeHold: 0\n"));
   EXPECT_EQ(s.segmentation.mode, SegmentationMode::Async);
   EXPECT_EQ(s.segmentation.interval, 5);
   EXPECT_EQ(s.segmentation.max_mask_age, 12);
@@ -32,6 +33,8 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(s.segmentation.urgent_inliers, 70);
   EXPECT_EQ(d.segmentation.max_grow_px, 30);
   EXPECT_EQ(s.segmentation.max_grow_px, 12);
+  EXPECT_TRUE(d.segmentation.keyframe_hold);
+  EXPECT_FALSE(s.segmentation.keyframe_hold);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -45,6 +48,7 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
       {kTum + "Segmentation.interval: 0\n", "Segmentation.interval", "is 0: must be in [1, 1000]"},
       {kTum + "Segmentation.maxMaskAge: -1\n", "Segmentation.maxMaskAge", "is -1: must be in [0, 1000]"},
       {kTum + "Segmentation.maxGrowPx: -1\n", "Segmentation.maxGrowPx", "is -1: must be in [0, 1000]"},
+      {kTum + "Segmentation.keyframeHold: 2\n", "Segmentation.keyframeHold", "must be 0 or 1"},
       {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
        "must be at most max_mask_age"},
   };
