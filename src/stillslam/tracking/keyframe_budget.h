@@ -5,11 +5,12 @@
 // every frame. A token bucket on the frames' timestamps, so deterministic and
 // threaded runs make the same decision: it fills at per_second and holds at
 // most `burst` keyframes; an ordinary keyframe needs a whole token. Tracking
-// about to fail takes its keyframe anyway (the balance stays at >= 0).
+// about to fail, or with few inliers (TrackerOptions::keyframe_budget_inliers),
+// takes its keyframe anyway (the balance stays at >= 0).
 namespace stillslam {
 
 struct KeyFrameBudgetOptions {
-  double per_second = 0;  // 0: no budget
+  double per_second = 5;  // 0: no budget; 5: bench/README.md, issue #21 session 10
   double burst = 2;       // keyframes that may come back to back
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;

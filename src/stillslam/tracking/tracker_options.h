@@ -24,6 +24,10 @@ struct TrackerOptions {
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
   KeyFrameBudgetOptions keyframe_budget;  // keyframes per second of input (tracking/keyframe_budget.h)
+  // A frame with fewer inliers takes its keyframe outside the budget: the
+  // budget holds while tracking is comfortable, not at a map's start or when
+  // the view is mostly new or hidden (bench/README.md, issue #21 session 10).
+  int keyframe_budget_inliers = 150;
   // A weak frame interrupts the mapper's local BA only with fewer inliers (tracking/keyframe_admission.h).
   int interrupt_inliers = 100;
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
