@@ -58,6 +58,15 @@ TEST(MotionSettings, ObjectAndPlaceKeysBind) {
   EXPECT_NE(g.find("Motion.placeRadius"), std::string::npos) << g;
 }
 
+// Session 10: how long points on a person kept as static live.
+TEST(MotionSettings, KeptPointFramesBinds) {
+  TempDir dir;
+  EXPECT_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_point_frames, 30);
+  EXPECT_EQ(load_settings(dir.write("b.yaml", kBase + "Motion.keptPointFrames: 0\n")).motion.kept_point_frames, 0);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptPointFrames: -1\n");
+  EXPECT_NE(e.find("Motion.keptPointFrames"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, SparseViewKeysBind) {
   TempDir dir;
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));

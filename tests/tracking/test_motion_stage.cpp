@@ -6,6 +6,9 @@
 // motion is seen.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
+
 #include <opencv2/imgproc.hpp>
 
 #include "stillslam/core/error.h"
@@ -73,11 +76,14 @@ struct StageRun {
   // flagged as seen on a person (on the person's region, elsewhere), and culled.
   std::vector<int> flagged_on_person, flagged_elsewhere, culled;
   std::vector<int> watched_features;  // the stage's own features on the unmasked box
+  // With persistent points: the most frames since a point was first flagged
+  // that it was matched on the person again and not culled.
+  int max_flagged_age = 0;
 };
 
 // frame_features: the frames' ORB budget.
 StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1,
-                   int frame_features = OrbOptions{}.n_features) {
+                   int frame_features = OrbOptions{}.n_features, bool persistent_points = false) {
   OrbOptions frame_orb;
   frame_orb.n_features = frame_features;
   const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
@@ -90,6 +96,9 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
   Scene scene;
   scene.box_moves = box_moves;
   StageRun out;
+  std::vector<MapPointPtr> points;  // by keypoint index, with persistent_points
+  std::map<std::uint64_t, int> first_flagged;  // by point id
+  std::uint64_t next_point_id = 0;
   for (int k = 0; k < frames; ++k) {
     SensorFrame in;
     in.gray = scene.gray(k);
@@ -105,9 +114,20 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
     T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
     frame.set_pose(T_world_cam.inverse());
     for (std::size_t i = 0; i < frame.size(); ++i) {
-      frame.set_map_point(i, std::make_shared<MapPoint>(i, Eigen::Vector3d::Zero(), nullptr));
+      if (persistent_points && i < points.size() && !points[i]->is_bad()) {
+        frame.set_map_point(i, points[i]);
+        continue;
+      }
+      frame.set_map_point(i, std::make_shared<MapPoint>(next_point_id++, Eigen::Vector3d::Zero(), nullptr));
+      if (persistent_points) points.resize(std::max(points.size(), i + 1)), points[i] = frame.map_point(i);
     }
     out.culled.push_back(stage.on_tracked(frame, true));
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      const MapPointPtr& mp = frame.map_point(i);
+      if (!mp->on_dynamic_instance() || mp->is_bad()) continue;
+      if (!person_at(k).contains(cv::Point(frame.keypoints_raw()[i].pt))) continue;
+      out.max_flagged_age = std::max(out.max_flagged_age, k - first_flagged.try_emplace(mp->id(), k).first->second);
+    }
     int on_person = 0, elsewhere = 0;
     for (std::size_t i = 0; i < frame.size(); ++i) {
       if (!frame.map_point(i)->on_dynamic_instance()) continue;
@@ -164,6 +184,29 @@ TEST(MotionStage, StillPersonLeavesTheMaskMovingBoxEntersIt) {
   // In the frame that finds the box moving, the points of its still tracked features are culled.
   EXPECT_EQ(r.culled[o.span - 1], 0);
   EXPECT_GT(r.culled[o.span], 5);
+}
+
+// The same map points are matched frame after frame: on the person kept as
+// static they live Motion.keptPointFrames frames from the first frame they
+// were matched there, then are culled (its sway must not stay in the map).
+TEST(MotionStage, PointsOnAStillPersonLiveKeptPointFramesOnly) {
+  MotionOptions o;
+  o.span = 6;
+  o.person_frames = 10;
+  o.kept_point_frames = 0;
+  const int first_static = o.span + o.person_frames;
+  const StageRun unlimited = run_scene(40, true, o, -1, -1, OrbOptions{}.n_features, true);
+  EXPECT_GE(unlimited.max_flagged_age, 10);
+  for (int k = o.span + 1; k < 40; ++k) EXPECT_EQ(unlimited.culled[k], 0) << k;
+  o.kept_point_frames = 4;
+  const StageRun limited = run_scene(40, true, o, -1, -1, OrbOptions{}.n_features, true);
+  EXPECT_EQ(limited.max_flagged_age, 3);
+  for (int k = o.span + 1; k < first_static + 4; ++k) EXPECT_EQ(limited.culled[k], 0) << k;
+  int culled = 0;
+  for (int k = first_static + 4; k < 40; ++k) culled += limited.culled[k];
+  EXPECT_GT(culled, 50);
+  // The person stays kept: its features still track.
+  for (int k = first_static; k < 40; ++k) EXPECT_GT(limited.stats[k].features_kept_by_motion, 20) << k;
 }
 
 // The person goes undetected for 5 frames (its id is dropped after 3) and

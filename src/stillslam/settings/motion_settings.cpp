@@ -14,6 +14,7 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.number("minIou", options.min_iou, "MotionOptions.min_iou", {0, 1, true});
   keys.number("objectMovingFactor", options.object_moving_factor, "MotionOptions.object_moving_factor", {2, 100});
   keys.number("objectMovingFloorPx", options.object_moving_floor_px, "MotionOptions.object_moving_floor_px", {1.5, 100});
+  keys.integer("keptPointFrames", options.kept_point_frames, "MotionOptions.kept_point_frames", {0, 100000});
   keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
   keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");

@@ -25,6 +25,11 @@ struct MotionOptions {
   // background's median residual, floor): lower than a person's 3x / 3 px.
   double object_moving_factor = 2.0;
   double object_moving_floor_px = 2.0;
+  // Map points matched on a person kept as static are culled this many frames
+  // after they were first matched there (0: never): a seated person still
+  // sways and breathes, and a point kept longer carries that into the pose
+  // (30: bench/README.md, issue #19 session 10).
+  int kept_point_frames = 30;
   // A new instance within this distance (world frame) of where one of its
   // class was last seen takes over its evidence (instance_places.h); 0: never.
   double place_radius_m = 0.5;

@@ -45,6 +45,7 @@ void MotionStage::reset() {
   alias_.clear();
   age_.clear();
   judged_ = 0;
+  kept_since_.clear();
 }
 
 std::uint32_t MotionStage::evidence_id(std::uint32_t stable) const {
@@ -309,6 +310,20 @@ int MotionStage::on_tracked(const Frame& frame, bool tracked) {
       ++culled;
     } else if (dynamic_ids_.count(frame_labels[i])) {
       mp->mark_on_dynamic_instance();
+      if (options_.kept_point_frames == 0) continue;
+      const auto since = kept_since_.try_emplace(mp->id(), frame.id()).first;
+      if (frame.id() >= since->second + static_cast<std::uint64_t>(options_.kept_point_frames)) {
+        mp->set_bad();
+        ++culled;
+        kept_since_.erase(since);
+      }
+    }
+  }
+  // Points never matched again: forgotten once well past the limit.
+  if (kept_since_.size() > 4096) {
+    for (auto it = kept_since_.begin(); it != kept_since_.end();) {
+      it = frame.id() > it->second + 4 * static_cast<std::uint64_t>(options_.kept_point_frames) ? kept_since_.erase(it)
+                                                                                                 : std::next(it);
     }
   }
   return culled;

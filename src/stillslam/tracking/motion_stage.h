@@ -5,9 +5,11 @@
 // An instance of a dynamic class (a person) that agrees with the camera
 // motion for its class's evidence window is left out of the mask, so its
 // features track and make map points; an instance of any other class that
-// moves is masked, and map points seen on it are culled. Masked instances
-// are still watched through a small set of features extracted inside the
-// mask and kept apart from tracking.
+// moves is masked, and map points seen on it are culled. Points seen on a
+// person kept as static live Motion.keptPointFrames frames only: a seated
+// person sways and breathes, and an old point carries that into the pose.
+// Masked instances are still watched through a small set of features
+// extracted inside the mask and kept apart from tracking.
 //
 // An instance that comes back under a new id (it left the view, was hidden,
 // or its mask changed too much) where one of its class was last seen takes
@@ -59,7 +61,8 @@ class MotionStage {
 
   // After tracking (the caller holds the map's update mutex): the check on
   // this frame with its tracked pose; map points on moving instances are
-  // culled. Lost tracking drops all evidence. Returns the map points culled.
+  // culled, and those on a kept person past Motion.keptPointFrames. Lost
+  // tracking drops all evidence. Returns the map points culled.
   int on_tracked(const Frame& frame, bool tracked);
 
   bool is_static(std::uint32_t id) const { return check_.is_static(id); }
@@ -94,6 +97,8 @@ class MotionStage {
   std::map<std::uint32_t, std::uint32_t> alias_;  // segmenter's stable id -> the earlier instance it was found to be
   std::map<std::uint32_t, int> age_;              // judged frames since each stable id appeared
   std::int64_t judged_ = 0;                       // frames judged since the last reset
+  // Map point id -> the frame it was first matched on a person kept as static (Motion.keptPointFrames).
+  std::map<std::uint64_t, std::uint64_t> kept_since_;
   // This frame (between mask_for() and on_tracked()).
   bool pending_ = false;
   cv::Mat1i labels_;
