@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <unordered_set>
+#include <utility>
 
 #include "stillslam/map/projection_search.h"
 #include "stillslam/tracking/depth_point_check.h"
@@ -16,6 +17,10 @@ namespace stillslam {
 
 namespace {
 constexpr int kMinMotionMatches = 20;
+constexpr int kMinMotionInliers = 10;
+constexpr int kMinReferenceMatches = 15;
+constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides with map ids
+
 // The constant velocity of a motion over `frames` frames: its rotation angle
 // and translation divided evenly (close to the exact root for small turns).
 Eigen::Isometry3d per_frame_motion(const Eigen::Isometry3d& motion, int frames) {
@@ -26,9 +31,6 @@ Eigen::Isometry3d per_frame_motion(const Eigen::Isometry3d& motion, int frames) 
   out.translation() = motion.translation() / frames;
   return out;
 }
-constexpr int kMinMotionInliers = 10;
-constexpr int kMinReferenceMatches = 15;
-constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides with map ids
 }  // namespace
 
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
@@ -103,6 +105,8 @@ TrackingResult Tracker::track(Frame& frame) {
   if (ok) ok = track_local_map(frame, result);
   ok = sparse_view_fallback(frame, result, ok);
 
+  // After a start from an earlier frame the last frame lies that many frames back (once).
+  const int frames_since_last = std::exchange(start_gap_frames_, 1);
   if (ok) {
     const bool recovered = state_ == TrackingState::Lost;
     if (result.relocalized) result.reason = "relocalized";
@@ -113,9 +117,7 @@ TrackingResult Tracker::track(Frame& frame) {
     state_ = TrackingState::Ok;
     // After a loss the last good frame may be far back in time: no velocity.
     if (last_frame_.has_pose() && !recovered) {
-      // After a start from an earlier frame the last frame lies start_gap_frames_ back.
-      velocity_ = per_frame_motion(frame.T_cam_world() * last_frame_.T_cam_world().inverse(), start_gap_frames_);
-      start_gap_frames_ = 1;
+      velocity_ = per_frame_motion(frame.T_cam_world() * last_frame_.T_cam_world().inverse(), frames_since_last);
     } else {
       velocity_.reset();
     }
