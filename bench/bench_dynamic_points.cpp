@@ -317,6 +317,15 @@ int run(const Args& a) {
   }
   std::printf("  keyframes %llu: %ld depth points created, %ld (%.1f %%) on dynamic pixels\n",
               static_cast<unsigned long long>(counter.keyframes_seen()), kf_points, kf_dynamic, share(kf_dynamic, kf_points));
+  // The map's start: how many of the first keyframe's points lie on movers.
+  for (const FrameRecord& f : counter.frames()) {
+    if (!f.keyframe) continue;
+    std::printf("  first keyframe (frame %llu): %d points, %d (%.1f %%) on dynamic pixels\n",
+                static_cast<unsigned long long>(f.id), f.keyframe_new_points, f.keyframe_new_dynamic,
+                share(f.keyframe_new_dynamic, f.keyframe_new_points));
+    out["first_keyframe"] = {{"frame", f.id}, {"points", f.keyframe_new_points}, {"dynamic", f.keyframe_new_dynamic}};
+    break;
+  }
   // Lifetimes of classified points (keyframe ids are global, so the
   // difference counts keyframes created in between, culled or not).
   std::vector<double> life_static, life_dynamic;

@@ -114,6 +114,7 @@ BlockRun track_moving_block(const TrackerOptions& options) {
 TEST(TrackerMovingBlock, PoseStaysRightAndNoDepthPointsOnTheBlock) {
   TrackerOptions options;
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first
   options.max_frames_between_keyframes = 5;
   options.new_point_check.enabled = true;
   options.skip_outlier_keypoints = true;
@@ -145,6 +146,7 @@ int block_points_alive(int streak) {
   Map map;
   TrackerOptions options;
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first
   options.outlier_streak_cull = streak;
   Tracker tracker(map, options, {});
   std::vector<MapPointPtr> block_points;

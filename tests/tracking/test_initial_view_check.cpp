@@ -2,6 +2,8 @@
 // which chosen points move between the two frames.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "map/synthetic_scene.h"
 #include "stillslam/tracking/initial_view_check.h"
 
@@ -92,6 +94,50 @@ TEST(InitialViewCheck, LeavesOutWhatTheNextFramesMaskCovers) {
   }
   EXPECT_EQ(kept_left, 0);
   EXPECT_EQ(dropped_right, 0);
+}
+
+// Without segmentation (no masks at all) a third of the view moves: the
+// start is accepted, and only the matched points that agree with the camera
+// motion are kept and confirmed.
+TEST(InitialViewCheck, UnmaskedKeepsOnlyConfirmedStaticPoints) {
+  test::SyntheticScene scene(1500);
+  const std::vector<std::size_t> movers = first_points(scene, 0.35);
+  std::vector<std::size_t> first_point;
+  const Frame first = scene.make_frame(0, test::pose_at(0), &first_point);
+  for (std::size_t i : movers) scene.move_point(i, Eigen::Vector3d(0.05, 0, 0));
+  const Frame next = scene.make_frame(1, test::pose_at(0.02, 0, 1));
+  const InitialViewCheck c = check_initial_view(first, next, {});
+  ASSERT_TRUE(c.accepted) << c.reason;
+  EXPECT_NEAR(static_cast<double>(c.moving) / c.matches, 0.35, 0.05);
+  int moving_kept = 0, static_kept = 0, statics = 0;
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    const bool moves = first_point[k] < movers.size();
+    const bool kept = c.keep[k] && c.confirmed[k];  // the tracker's rule without masks
+    moving_kept += moves && kept ? 1 : 0;
+    static_kept += !moves && kept ? 1 : 0;
+    statics += moves ? 0 : 1;
+  }
+  EXPECT_EQ(moving_kept, 0);  // a mover that left the view is not kept either
+  EXPECT_GT(static_kept, 0.9 * statics);
+  // With the masked rule's share the same view is rejected.
+  InitialViewCheckOptions strict;
+  strict.max_moving_share_unmasked = 0.2;
+  EXPECT_FALSE(check_initial_view(first, next, strict).accepted);
+}
+
+// Movers each going their own way (limbs, several people): no motion holds
+// most of the matches. (A majority moving as one rigid body is, to geometry
+// alone, the static world; the check cannot tell.)
+TEST(InitialViewCheck, UnmaskedRejectsAViewMostlyMoving) {
+  test::SyntheticScene scene(1500);
+  const Frame first = scene.make_frame(0, test::pose_at(0));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> offset(-0.08, 0.08);
+  for (std::size_t i : first_points(scene, 0.8)) scene.move_point(i, Eigen::Vector3d(offset(rng), offset(rng), 0));
+  const Frame next = scene.make_frame(1, test::pose_at(0.02, 0, 1));
+  const InitialViewCheck c = check_initial_view(first, next, {});
+  EXPECT_FALSE(c.accepted);
+  EXPECT_GT(static_cast<double>(c.moving) / c.matches, 0.7);
 }
 
 TEST(InitialViewCheck, RejectsWhenEitherFrameIsMostlyMasked) {

@@ -187,6 +187,7 @@ ClusterRun track_cluster(const TrackerOptions& options) {
 TEST(StaticEvidence, TrackerFollowsTheStaticSceneNotTheNearCluster) {
   TrackerOptions options;
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first
   options.static_evidence.enabled = true;
   const ClusterRun on = track_cluster(options);
   options.static_evidence.enabled = false;

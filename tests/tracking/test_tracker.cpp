@@ -17,6 +17,7 @@ TEST(Tracker, TracksSmoothMotionAndCreatesKeyFrames) {
   link.insert_keyframe = [&](KeyFramePtr kf) { inserted.push_back(std::move(kf)); };
   TrackerOptions options;
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first (start check: test_tracker_start_unmasked.cpp)
   Tracker tracker(map, options, link);
   double max_error = 0;
   int keyframes = 0;
@@ -127,6 +128,7 @@ TEST(Tracker, LostWhenTheViewJumpsAwayAndRecoversWhenBack) {
   Map map;
   TrackerOptions options;
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first (start check: test_tracker_start_unmasked.cpp)
   Tracker tracker(map, options, {});
   for (int i = 0; i < 5; ++i) {
     Frame f = scene.make_frame(static_cast<std::uint64_t>(i), test::pose_at(0.01 * i));

@@ -10,13 +10,19 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   // Map initialization (tracking/initial_view_check.h).
   keys.integer("initMinKeypoints", tracker.init_min_keypoints, "TrackerOptions.init_min_keypoints", {1, 50000});
   keys.integer("initConfirmFrames", tracker.init_confirm_frames, "TrackerOptions.init_confirm_frames", {0, 100});
+  keys.integer("initUnmaskedConfirmFrames", tracker.init_unmasked_confirm_frames,
+               "TrackerOptions.init_unmasked_confirm_frames", {0, 100});
   keys.integer("initWaitFrames", tracker.init_wait_frames, "TrackerOptions.init_wait_frames", {0, 100000});
   InitialViewCheckOptions& view = tracker.initial_view;
   keys.number("initMaxMaskedFraction", view.max_masked_fraction, "InitialViewCheckOptions.max_masked_fraction", {0, 1});
   keys.number("initMaxMovingShare", view.max_moving_share, "InitialViewCheckOptions.max_moving_share", {0, 1});
+  keys.number("initMaxMovingShareUnmasked", view.max_moving_share_unmasked,
+              "InitialViewCheckOptions.max_moving_share_unmasked", {0, 1});
   keys.integer("initMinMatches", view.min_matches, "InitialViewCheckOptions.min_matches", {1, 50000});
   keys.number("initMaxReprojectionError", view.max_reprojection_error_px,
               "InitialViewCheckOptions.max_reprojection_error_px", {0, 100, true});
+  keys.number("initMaxReprojectionErrorUnmasked", view.max_reprojection_error_unmasked_px,
+              "InitialViewCheckOptions.max_reprojection_error_unmasked_px", {0, 100, true});
   // Keyframe decision.
   keys.integer("maxFramesBetweenKeyframes", tracker.max_frames_between_keyframes,
                "TrackerOptions.max_frames_between_keyframes", {0, 100000});

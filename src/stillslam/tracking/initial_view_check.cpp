@@ -59,18 +59,24 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
     out.reason = "first keyframe check: " + std::to_string(out.matches) + " matches with the next frame";
     return out;
   }
+  const bool unmasked = first.dynamic_mask().empty() && next.dynamic_mask().empty();
   PnpRansacOptions pnp;
-  pnp.max_reprojection_error_px = options.max_reprojection_error_px;
+  pnp.max_reprojection_error_px =
+      unmasked ? options.max_reprojection_error_unmasked_px : options.max_reprojection_error_px;
   const PnpResult motion = solve_pnp_ransac(camera, points, pixels, pnp);
   out.moving = motion.success ? out.matches - motion.num_inliers : out.matches;
-  if (out.moving > options.max_moving_share * out.matches) {
+  const double max_moving_share = unmasked ? options.max_moving_share_unmasked : options.max_moving_share;
+  if (out.moving > max_moving_share * out.matches) {
     out.reason = "first keyframe check: " + std::to_string(out.moving) + " of " + std::to_string(out.matches) +
                  " matches move against the camera (a dynamic object the mask missed?)";
     return out;
   }
 
+  out.confirmed.assign(first.size(), false);
   for (std::size_t k = 0; k < matches.size(); ++k) {
-    if (!motion.inlier[k]) out.keep[with_depth[static_cast<std::size_t>(matches[k].queryIdx)]] = false;
+    const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
+    out.keep[i] = motion.inlier[k];
+    out.confirmed[i] = motion.inlier[k];
   }
   for (const std::size_t i : with_depth) {
     const cv::Point2f& p = first.keypoint(i).pt;
@@ -86,8 +92,10 @@ void InitialViewCheckOptions::check() const {
   using namespace option_check;
   in_range("InitialViewCheckOptions.max_masked_fraction", max_masked_fraction, 0, 1);
   in_range("InitialViewCheckOptions.max_moving_share", max_moving_share, 0, 1);
+  in_range("InitialViewCheckOptions.max_moving_share_unmasked", max_moving_share_unmasked, 0, 1);
   at_least("InitialViewCheckOptions.min_matches", min_matches, 1);
   above("InitialViewCheckOptions.max_reprojection_error_px", max_reprojection_error_px, 0);
+  above("InitialViewCheckOptions.max_reprojection_error_unmasked_px", max_reprojection_error_unmasked_px, 0);
 }
 
 }  // namespace stillslam

@@ -15,6 +15,11 @@
 //    the next frame's dynamic mask, are left out of the first keyframe, and
 //    the PnP motion is returned: the tracker starts the next frame from it,
 //    which works however far apart the frames are (--realtime drops frames).
+// Without masks (both frames unmasked) the same check guards the start
+// against movers nothing marks: the first frame is rejected only when the
+// camera motion does not hold most of the matches (max_moving_share_unmasked);
+// the tracker then keeps only keypoints that some confirming frame matched
+// as inliers (`confirmed`) and none found moving (`keep`).
 #include <Eigen/Geometry>
 
 #include <string>
@@ -27,8 +32,13 @@ namespace stillslam {
 struct InitialViewCheckOptions {
   double max_masked_fraction = 0.5;
   double max_moving_share = 0.2;
+  double max_moving_share_unmasked = 0.7;
   int min_matches = 50;  // fewer: the two frames do not overlap enough to judge
   double max_reprojection_error_px = 2.5;
+  // Without masks a close person walking sideways fits, within 2.5 px, a
+  // camera motion that also fits the far background (translation plus a
+  // compensating turn); 1 px separates them a few frames apart.
+  double max_reprojection_error_unmasked_px = 1.0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -39,6 +49,7 @@ struct InitialViewCheck {
   int matches = 0;         // first-frame keypoints with depth matched in the next frame
   int moving = 0;          // of those, disagreeing with the camera motion
   std::vector<bool> keep;  // per first-frame keypoint: may become a map point
+  std::vector<bool> confirmed;  // per first-frame keypoint: matched in the next frame, agreeing with the motion
   // When accepted: the next frame's pose relative to the first (PnP RANSAC).
   Eigen::Isometry3d T_next_first = Eigen::Isometry3d::Identity();
 };

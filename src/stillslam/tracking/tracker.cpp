@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <unordered_set>
+#include <utility>
 
 #include "stillslam/map/projection_search.h"
 #include "stillslam/tracking/depth_point_check.h"
@@ -19,6 +20,17 @@ constexpr int kMinMotionMatches = 20;
 constexpr int kMinMotionInliers = 10;
 constexpr int kMinReferenceMatches = 15;
 constexpr std::uint64_t kTemporaryPointIdBase = 1ULL << 62;  // never collides with map ids
+
+// The constant velocity of a motion over `frames` frames: its rotation angle
+// and translation divided evenly (close to the exact root for small turns).
+Eigen::Isometry3d per_frame_motion(const Eigen::Isometry3d& motion, int frames) {
+  if (frames <= 1) return motion;
+  const Eigen::AngleAxisd turn(motion.linear());
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(turn.angle() / frames, turn.axis()).toRotationMatrix();
+  out.translation() = motion.translation() / frames;
+  return out;
+}
 }  // namespace
 
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
@@ -41,8 +53,10 @@ void Tracker::start_new_map(Map& map) {
   was_lost_ = false;
   start_candidate_.reset();
   start_keep_.clear();
+  last_frame_left_out_.clear();
   start_confirmations_ = 0;
   start_frames_rejected_ = 0;
+  start_gap_frames_ = 1;
 }
 
 void Tracker::switch_map(Map& map) { map_ = &map; }
@@ -91,6 +105,8 @@ TrackingResult Tracker::track(Frame& frame) {
   if (ok) ok = track_local_map(frame, result);
   ok = sparse_view_fallback(frame, result, ok);
 
+  // After a start from an earlier frame the last frame lies that many frames back (once).
+  const int frames_since_last = std::exchange(start_gap_frames_, 1);
   if (ok) {
     const bool recovered = state_ == TrackingState::Lost;
     if (result.relocalized) result.reason = "relocalized";
@@ -101,7 +117,7 @@ TrackingResult Tracker::track(Frame& frame) {
     state_ = TrackingState::Ok;
     // After a loss the last good frame may be far back in time: no velocity.
     if (last_frame_.has_pose() && !recovered) {
-      velocity_ = frame.T_cam_world() * last_frame_.T_cam_world().inverse();
+      velocity_ = per_frame_motion(frame.T_cam_world() * last_frame_.T_cam_world().inverse(), frames_since_last);
     } else {
       velocity_.reset();
     }
@@ -125,6 +141,7 @@ TrackingResult Tracker::track(Frame& frame) {
     result.reference = reference_keyframe_;
     result.T_cam_reference = T_last_ref_;
     last_frame_ = frame;
+    last_frame_left_out_.clear();
   } else {
     state_ = TrackingState::Lost;
     velocity_.reset();
@@ -176,27 +193,35 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   // The first keyframe's points enter the map like any keyframe's: not from a stale mask.
   const bool stale_mask =
       options_.max_keyframe_mask_age >= 0 && frame.mask_age() > options_.max_keyframe_mask_age;
-  // Without segmentation nothing is known to move; after a long wait, take what comes.
-  if (!stale_mask && (frame.dynamic_mask().empty() || start_frames_rejected_ >= options_.init_wait_frames)) {
+  // Without segmentation only the geometric check guards the start; after a long wait, take what comes.
+  const bool unmasked = frame.dynamic_mask().empty();
+  const int confirm_frames = unmasked ? options_.init_unmasked_confirm_frames : options_.init_confirm_frames;
+  if (!stale_mask && ((unmasked && confirm_frames == 0) || start_frames_rejected_ >= options_.init_wait_frames)) {
     initialize(frame);
     return Start::FromThisFrame;
   }
   if (start_candidate_) {
     const InitialViewCheck check = check_initial_view(*start_candidate_, frame, options_.initial_view);
     if (check.accepted) {
-      for (std::size_t i = 0; i < start_keep_.size(); ++i) start_keep_[i] = start_keep_[i] && check.keep[i];
-      if (++start_confirmations_ >= options_.init_confirm_frames) {
+      for (std::size_t i = 0; i < start_keep_.size(); ++i) {
+        start_keep_[i] = start_keep_[i] && check.keep[i];
+        start_confirmed_[i] = start_confirmed_[i] || check.confirmed[i];
+      }
+      if (++start_confirmations_ >= confirm_frames) {
         Frame first = std::move(*start_candidate_);
-        const std::vector<bool> keep = std::move(start_keep_);
+        // Without masks a point nothing confirmed may be a mover no frame matched.
+        std::vector<bool> keep = std::move(start_keep_);
+        for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
         start_candidate_.reset();
         initialize(first, keep);
         // The first frame is at identity: the motion model starts this frame
         // at the check's PnP motion, however many frames were dropped between.
         velocity_ = check.T_next_first;
+        start_gap_frames_ = static_cast<int>(std::max<std::uint64_t>(frame.id() - first.id(), 1));
         return Start::FromAnEarlierFrame;
       }
       result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
-                      std::to_string(options_.init_confirm_frames) + " frames";
+                      std::to_string(confirm_frames) + " frames";
       return Start::Waiting;
     }
     ++start_frames_rejected_;
@@ -212,6 +237,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   }
   start_candidate_ = frame;
   start_keep_.assign(frame.size(), true);
+  start_confirmed_.assign(frame.size(), false);
   start_confirmations_ = 0;
   return Start::Waiting;
 }
@@ -237,6 +263,9 @@ void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
   keyframe_budget_.spend(frame.timestamp());
   T_last_ref_ = Eigen::Isometry3d::Identity();
   last_frame_ = frame;
+  // What the start check left out (a mover) is no visual-odometry point either.
+  last_frame_left_out_.assign(frame.size(), false);
+  for (std::size_t i = 0; i < keep.size(); ++i) last_frame_left_out_[i] = !keep[i];
   state_ = TrackingState::Ok;
   if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
   if (link_.insert_keyframe) link_.insert_keyframe(kf);
@@ -256,6 +285,7 @@ void Tracker::update_last_frame() {
   int n = 0;
   const double close_depth = last_frame_.setup().close_depth;
   for (const auto& [z, i] : by_depth) {
+    if (i < last_frame_left_out_.size() && last_frame_left_out_[i]) continue;
     const MapPointPtr& existing = last_frame_.map_point(i);
     if (!existing || existing->num_observations() < 1) {
       auto mp = std::make_shared<MapPoint>(kTemporaryPointIdBase + temporary_point_id_++,

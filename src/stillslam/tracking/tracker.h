@@ -72,8 +72,8 @@ class Tracker {
 
  private:
   enum class Start { Waiting, FromThisFrame, FromAnEarlierFrame };
-  // Starts the map from this frame, or (with segmentation on) from an
-  // earlier one that this frame confirms; sets the reason while waiting.
+  // Starts the map from an earlier frame that this frame confirms (or, with
+  // no check, from this frame); sets the reason while waiting.
   Start try_to_start_map(Frame& frame, TrackingResult& result);
   // keep: per keypoint, may become a map point (empty: all).
   void initialize(Frame& frame, const std::vector<bool>& keep = {});
@@ -117,8 +117,13 @@ class Tracker {
   // keypoints that may become map points.
   std::optional<Frame> start_candidate_;
   std::vector<bool> start_keep_;
+  std::vector<bool> start_confirmed_;  // matched as an inlier by some confirming frame
+  // Keypoints of last_frame_ that give no visual-odometry point (the map's
+  // first frame: those its start check left out).
+  std::vector<bool> last_frame_left_out_;
   int start_confirmations_ = 0;
   int start_frames_rejected_ = 0;  // frames that had the depth but failed the check
+  int start_gap_frames_ = 1;  // frames between the first keyframe and the frame that started the map
 };
 
 }  // namespace stillslam

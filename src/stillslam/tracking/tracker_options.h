@@ -20,6 +20,13 @@ struct TrackerOptions {
   // enough depth starts the map.
   InitialViewCheckOptions initial_view;
   int init_confirm_frames = 2;
+  // Without segmentation the same check, over this many next frames, keeps
+  // the points that move (or that no frame confirms) out of the first
+  // keyframe: a view full of walking people would otherwise anchor the map
+  // on them. 0 (the default): the map starts from the first frame with
+  // depth. 3 took n3 from 0.47/0.54 m to 0.16/0.088 m (stereo/RGB-D) but
+  // wx RGB-D from 5 mm to 0.23 m (bench/README.md, issue #20 session 10).
+  int init_unmasked_confirm_frames = 0;
   int init_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
