@@ -4,6 +4,13 @@
 
 namespace stillslam {
 
+bool on_any_instance(const std::vector<cv::Mat1b>& instances, const cv::Point2f& pixel) {
+  const cv::Point p(cvRound(pixel.x), cvRound(pixel.y));
+  return std::any_of(instances.begin(), instances.end(), [&](const cv::Mat1b& m) {
+    return cv::Rect(0, 0, m.cols, m.rows).contains(p) && m(p) != 0;
+  });
+}
+
 void FreshMaskCheck::remember(std::size_t frame_index, const Frame& frame) {
   std::vector<Seen> seen;
   for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -19,11 +26,7 @@ int FreshMaskCheck::apply(std::size_t frame_index, const std::vector<cv::Mat1b>&
   const auto it = seen_.find(frame_index);
   if (it != seen_.end()) {
     for (const Seen& s : it->second) {
-      const cv::Point p(cvRound(s.pixel.x), cvRound(s.pixel.y));
-      const bool on_instance = std::any_of(instances.begin(), instances.end(), [&](const cv::Mat1b& m) {
-        return cv::Rect(0, 0, m.cols, m.rows).contains(p) && m(p) != 0;
-      });
-      if (!on_instance || s.point->is_bad()) continue;
+      if (!on_any_instance(instances, s.pixel) || s.point->is_bad()) continue;
       s.point->set_bad();
       ++culled;
     }

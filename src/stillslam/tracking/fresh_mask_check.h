@@ -15,6 +15,10 @@
 
 namespace stillslam {
 
+// Whether the raw pixel lies inside one of the instances (frame size,
+// non-zero inside); pixels outside the image are on none.
+bool on_any_instance(const std::vector<cv::Mat1b>& instances, const cv::Point2f& pixel);
+
 class FreshMaskCheck {
  public:
   // After tracking a frame that went to the segmenter but was built with a

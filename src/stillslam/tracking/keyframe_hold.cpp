@@ -2,17 +2,9 @@
 
 #include <algorithm>
 
+#include "stillslam/tracking/fresh_mask_check.h"
+
 namespace stillslam {
-namespace {
-
-bool on_instance(const std::vector<cv::Mat1b>& instances, const cv::Point2f& pixel) {
-  const cv::Point p(cvRound(pixel.x), cvRound(pixel.y));
-  return std::any_of(instances.begin(), instances.end(), [&](const cv::Mat1b& m) {
-    return cv::Rect(0, 0, m.cols, m.rows).contains(p) && m(p) != 0;
-  });
-}
-
-}  // namespace
 
 void KeyframeHold::hold(KeyFramePtr kf, std::size_t frame_index, std::vector<cv::Point2f> raw_pixels) {
   queue_.push_back({std::move(kf), true, frame_index, std::move(raw_pixels)});
@@ -38,7 +30,7 @@ KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::ve
       KeyFrame* kf = e.kf.get();
       for (std::size_t i = 0; i < kf->size() && i < e.raw_pixels.size(); ++i) {
         const MapPointPtr mp = kf->map_point(i);
-        if (!mp || mp->is_bad() || !on_instance(instances, e.raw_pixels[i])) continue;
+        if (!mp || mp->is_bad() || !on_any_instance(instances, e.raw_pixels[i])) continue;
         if (mp->first_keyframe_id() == kf->id()) {
           mp->set_bad();
           ++out.culled;
