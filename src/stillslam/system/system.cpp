@@ -295,11 +295,14 @@ int System::release_held_keyframes() {
   return released.culled + released.unlinked;
 }
 
+void System::release_all_held_keyframes() {
+  if (!keyframe_hold_) return;
+  for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
+}
+
 void System::shutdown() {
   // Held keyframes go unchecked: no more masks come.
-  if (keyframe_hold_) {
-    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
-  }
+  release_all_held_keyframes();
   // Local mapping first: the keyframes it still finishes reach loop closing,
   // which indexes them before it stops.
   mapper_->stop();
@@ -310,9 +313,7 @@ void System::shutdown() {
 
 void System::start_new_map() {
   // The old map's held keyframes go to local mapping before it switches maps.
-  if (keyframe_hold_) {
-    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
-  }
+  release_all_held_keyframes();
   const std::uint64_t old_id = atlas_->active_map_id();
   Map& map = atlas_->create_map();
   spdlog::info("atlas: tracking lost for {} frames, map {} kept, new map {} starts", lost_frames_, old_id,
@@ -346,9 +347,7 @@ void System::detect_and_merge() {
 
 bool System::merge_into(Map& target, const LoopDetection& detection) {
   Map& source = atlas_->active_map();
-  if (keyframe_hold_) {
-    for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
-  }
+  release_all_held_keyframes();
   // Nothing may change either map while they are merged.
   mapper_->flush();
   if (loop_closer_) loop_closer_->flush();

@@ -213,6 +213,8 @@ class System {
   void on_new_keyframe(KeyFramePtr kf);
   // Releases the held keyframes the newest segmentation result allows; returns the points removed.
   int release_held_keyframes();
+  // Every held keyframe, unchecked (a new map, a merge, shutdown).
+  void release_all_held_keyframes();
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks
   std::unique_ptr<FrameBuilder> builder_;
