@@ -64,7 +64,10 @@ TEST(KeyframeHold, ReleasesAtItsOwnMaskWithoutThePointsInside) {
   ASSERT_GT(on_new, 10);
 
   KeyframeHold hold;
-  hold.hold(held, 7, pixels_of(f1));
+  hold.hold(held, pixels_of(f1));
+  EXPECT_TRUE(hold.release(7, {mask}).keyframes.empty());  // its input frame not known yet
+  EXPECT_EQ(hold.assign(7), 1);
+  EXPECT_EQ(hold.assign(8), 0);  // assigned once
   const KeyFramePtr fresh = map.create_keyframe(f1);
   EXPECT_TRUE(hold.pass(fresh).empty());  // behind the held one
   EXPECT_EQ(hold.held(), 1u);
@@ -102,8 +105,10 @@ TEST(KeyframeHold, ANewerMaskReleasesUnchecked) {
   const cv::Size size(f.setup().camera.width(), f.setup().camera.height());
   KeyframeHold hold;
   EXPECT_EQ(hold.pass(kf).size(), 1u);  // nothing held: passes at once
-  hold.hold(kf, 5, pixels_of(f));
-  hold.hold(kf, 9, pixels_of(f));
+  hold.hold(kf, pixels_of(f));
+  EXPECT_EQ(hold.assign(5), 1);
+  hold.hold(kf, pixels_of(f));
+  EXPECT_EQ(hold.assign(9), 1);
   // Frame 5's own mask never came (a threaded stage skipped it); frame 8's did.
   const KeyframeHoldRelease r = hold.release(8, {cv::Mat1b(size, uchar(255))});
   EXPECT_EQ(r.keyframes.size(), 1u);

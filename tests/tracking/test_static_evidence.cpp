@@ -158,7 +158,7 @@ ClusterRun track_cluster(const TrackerOptions& options) {
   Map map;
   // As local mapping registers a keyframe: its tracked points get its observation.
   LocalMappingLink link;
-  link.insert_keyframe = [](KeyFramePtr kf) {
+  link.insert_keyframe = [](KeyFramePtr kf, const Frame&) {
     for (std::size_t i = 0; i < kf->size(); ++i) {
       const MapPointPtr mp = kf->map_point(i);
       if (mp && !mp->is_bad() && !mp->is_observed_by(kf.get())) mp->add_observation(kf.get(), i);

@@ -14,7 +14,11 @@ TEST(Tracker, TracksSmoothMotionAndCreatesKeyFrames) {
   Map map;
   std::vector<KeyFramePtr> inserted;
   LocalMappingLink link;
-  link.insert_keyframe = [&](KeyFramePtr kf) { inserted.push_back(std::move(kf)); };
+  std::vector<std::uint64_t> tracked_ids;
+  link.insert_keyframe = [&](KeyFramePtr kf, const Frame& tracked) {
+    tracked_ids.push_back(tracked.id());
+    inserted.push_back(std::move(kf));
+  };
   TrackerOptions options;
   options.init_min_keypoints = 300;
   options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first (start check: test_tracker_start_unmasked.cpp)
@@ -37,6 +41,8 @@ TEST(Tracker, TracksSmoothMotionAndCreatesKeyFrames) {
   }
   EXPECT_LT(max_error, 1e-4);  // exact measurements
   EXPECT_EQ(static_cast<int>(inserted.size()), keyframes);
+  // Each keyframe came with the frame being tracked, here the frame it was made from.
+  for (std::size_t k = 0; k < inserted.size(); ++k) EXPECT_EQ(tracked_ids[k], inserted[k]->frame_id()) << k;
   EXPECT_GE(keyframes, 2);
   EXPECT_EQ(map.num_keyframes(), inserted.size());
 }

@@ -28,7 +28,7 @@ RateRun keyframes_made(TrackerOptions options, int frames) {
   test::SyntheticScene scene(3000);
   Map map;
   LocalMappingLink link;
-  link.insert_keyframe = [](KeyFramePtr kf) {
+  link.insert_keyframe = [](KeyFramePtr kf, const Frame&) {
     const std::vector<MapPointPtr>& points = kf->map_points();
     for (std::size_t i = 0; i < points.size(); ++i) {
       if (points[i] && !points[i]->is_observed_by(kf.get())) points[i]->add_observation(kf.get(), i);

@@ -175,7 +175,7 @@ void System::build_pipeline(const Settings& settings) {
   // mapping; relocalization in the active map when lost.
   LocalMapper* mapper = mapper_.get();
   LocalMappingLink link;
-  link.insert_keyframe = [this](KeyFramePtr kf) { on_new_keyframe(std::move(kf)); };
+  link.insert_keyframe = [this](KeyFramePtr kf, const Frame& tracked) { on_new_keyframe(std::move(kf), tracked); };
   link.accepts_keyframes = [mapper](double now) { return mapper->accepts_keyframes(now); };
   link.queued_keyframes = [mapper](double now) { return mapper->queued_keyframes(now); };
   link.interrupt_bundle_adjustment = [mapper] { mapper->interrupt_bundle_adjustment(); };
@@ -264,19 +264,19 @@ void System::move_stages_to_active_map() {
   if (loop_closer_) loop_closer_->switch_map(map);
 }
 
-void System::on_new_keyframe(KeyFramePtr kf) {
+void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
   if (!keyframe_hold_) {
     mapper_->insert_keyframe(std::move(kf));
     return;
   }
-  // Only a keyframe of the frame being tracked has a mask age (a map started
-  // from an earlier frame passes).
-  if (tracked_frame_ && kf->frame_id() == tracked_frame_->id() && tracked_mask_age_ > keyframe_mask_age_) {
+  // Only a keyframe of the frame being tracked is checked with that frame's
+  // mask (a map started from an earlier frame passes); process() gives it
+  // the frame's input index.
+  if (kf->frame_id() == tracked.id() && tracked.mask_age() > keyframe_mask_age_) {
     std::vector<cv::Point2f> pixels;
-    pixels.reserve(tracked_frame_->size());
-    for (const cv::KeyPoint& k : tracked_frame_->keypoints_raw()) pixels.push_back(k.pt);
-    keyframe_hold_->hold(std::move(kf), tracked_index_, std::move(pixels));
-    segment_tracked_ = true;
+    pixels.reserve(tracked.size());
+    for (const cv::KeyPoint& k : tracked.keypoints_raw()) pixels.push_back(k.pt);
+    keyframe_hold_->hold(std::move(kf), std::move(pixels));
     return;
   }
   for (KeyFramePtr& k : keyframe_hold_->pass(std::move(kf))) mapper_->insert_keyframe(std::move(k));
@@ -398,11 +398,7 @@ FrameStats System::process(const SensorFrame& input) {
   stats.held_points_removed = release_held_keyframes();
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
-  tracked_frame_ = &frame;
-  tracked_index_ = input.index;
-  tracked_mask_age_ = stats.build.mask_age;
   const TrackingResult result = tracker_->track(frame);
-  tracked_frame_ = nullptr;
   stats.tracking_ms = tracking.elapsed_ms();
   stats.tracking_cpu_ms = tracking_cpu.elapsed_ms();
   stats.state = result.state;
@@ -420,9 +416,8 @@ FrameStats System::process(const SensorFrame& input) {
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
-  if (segment_tracked_) {
+  if (keyframe_hold_ && keyframe_hold_->assign(input.index) > 0) {
     // The held keyframe's frame gets its own mask.
-    segment_tracked_ = false;
     stats.keyframe_held = true;
     if (async_masks_->segment_last(input.color, input.index)) stats.build.segmentation_request = ScheduleReason::Keyframe;
   }

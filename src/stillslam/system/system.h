@@ -205,12 +205,9 @@ class System {
   // keyframe_mask_age_ wait here for their own masks before local mapping.
   std::unique_ptr<KeyframeHold> keyframe_hold_;
   int keyframe_mask_age_ = 0;
-  const Frame* tracked_frame_ = nullptr;  // during tracker_->track(): the frame and its mask age
-  std::size_t tracked_index_ = 0;
-  int tracked_mask_age_ = 0;
-  bool segment_tracked_ = false;  // a keyframe of it was held: it goes to the segmenter
-  // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes.
-  void on_new_keyframe(KeyFramePtr kf);
+  // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes
+  // (`tracked`: the frame being tracked, LocalMappingLink::insert_keyframe).
+  void on_new_keyframe(KeyFramePtr kf, const Frame& tracked);
   // Releases the held keyframes the newest segmentation result allows; returns the points removed.
   int release_held_keyframes();
   // Every held keyframe, unchecked (a new map, a merge, shutdown).

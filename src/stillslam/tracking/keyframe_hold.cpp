@@ -6,13 +6,23 @@
 
 namespace stillslam {
 
-void KeyframeHold::hold(KeyFramePtr kf, std::size_t frame_index, std::vector<cv::Point2f> raw_pixels) {
-  queue_.push_back({std::move(kf), true, frame_index, std::move(raw_pixels)});
+void KeyframeHold::hold(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels) {
+  queue_.push_back({std::move(kf), true, std::nullopt, std::move(raw_pixels)});
+}
+
+int KeyframeHold::assign(std::size_t frame_index) {
+  int n = 0;
+  for (Entry& e : queue_) {
+    if (!e.held || e.frame_index) continue;
+    e.frame_index = frame_index;
+    ++n;
+  }
+  return n;
 }
 
 std::vector<KeyFramePtr> KeyframeHold::pass(KeyFramePtr kf) {
   if (queue_.empty()) return {std::move(kf)};
-  queue_.push_back({std::move(kf), false, 0, {}});
+  queue_.push_back({std::move(kf), false, std::nullopt, {}});
   return {};
 }
 
@@ -22,11 +32,12 @@ std::size_t KeyframeHold::held() const {
 
 KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::vector<cv::Mat1b>& instances) {
   KeyframeHoldRelease out;
-  while (!queue_.empty() && (!queue_.front().held || queue_.front().frame_index <= frame_index)) {
+  while (!queue_.empty() &&
+         (!queue_.front().held || (queue_.front().frame_index && *queue_.front().frame_index <= frame_index))) {
     Entry e = std::move(queue_.front());
     queue_.pop_front();
-    if (e.held && e.frame_index < frame_index) ++out.unchecked;
-    if (e.held && e.frame_index == frame_index && !e.kf->is_bad()) {
+    if (e.held && *e.frame_index < frame_index) ++out.unchecked;
+    if (e.held && *e.frame_index == frame_index && !e.kf->is_bad()) {
       KeyFrame* kf = e.kf.get();
       for (std::size_t i = 0; i < kf->size() && i < e.raw_pixels.size(); ++i) {
         const MapPointPtr mp = kf->map_point(i);

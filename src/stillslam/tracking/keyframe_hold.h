@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "stillslam/map/keyframe.h"
@@ -27,10 +28,14 @@ struct KeyframeHoldRelease {
 
 class KeyframeHold {
  public:
-  // A keyframe made from input frame `frame_index` with a carried mask;
+  // A keyframe made with a carried mask from the frame being tracked;
   // raw_pixels: its keypoints in the image (Frame::keypoints_raw), where the
-  // mask is looked up.
-  void hold(KeyFramePtr kf, std::size_t frame_index, std::vector<cv::Point2f> raw_pixels);
+  // mask is looked up. It waits for the input index of its frame (assign()).
+  void hold(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels);
+  // The frame of the keyframes held since the last call goes to the
+  // segmenter as input frame `frame_index`: they wait for that result.
+  // Returns how many were held since the last call.
+  int assign(std::size_t frame_index);
   // A keyframe from a fresh enough mask: local mapping gets it now, unless a
   // held one is before it (then it waits behind).
   // Returns the keyframes to pass on now.
@@ -41,7 +46,8 @@ class KeyframeHold {
   // The segmentation of input frame `frame_index` is the newest result: its
   // dynamic instances (frame size, non-zero inside). Releases, in order, the
   // keyframes up to the first one held for a later frame, checking the one of
-  // `frame_index` against the instances. The caller holds the map's update mutex.
+  // `frame_index` against the instances (a keyframe not assigned yet stops
+  // the release). The caller holds the map's update mutex.
   KeyframeHoldRelease release(std::size_t frame_index, const std::vector<cv::Mat1b>& instances);
   // Everything, unchecked (a new map starts, or the run ends).
   KeyframeHoldRelease release_all();
@@ -50,7 +56,7 @@ class KeyframeHold {
   struct Entry {
     KeyFramePtr kf;
     bool held = false;
-    std::size_t frame_index = 0;
+    std::optional<std::size_t> frame_index;  // until assign()
     std::vector<cv::Point2f> raw_pixels;
   };
   std::deque<Entry> queue_;

@@ -197,7 +197,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   const bool unmasked = frame.dynamic_mask().empty();
   const int confirm_frames = unmasked ? options_.init_unmasked_confirm_frames : options_.init_confirm_frames;
   if (!stale_mask && ((unmasked && confirm_frames == 0) || start_frames_rejected_ >= options_.init_wait_frames)) {
-    initialize(frame);
+    initialize(frame, frame);
     return Start::FromThisFrame;
   }
   if (start_candidate_) {
@@ -213,7 +213,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         std::vector<bool> keep = std::move(start_keep_);
         for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
         start_candidate_.reset();
-        initialize(first, keep);
+        initialize(first, frame, keep);
         // The first frame is at identity: the motion model starts this frame
         // at the check's PnP motion, however many frames were dropped between.
         velocity_ = check.T_next_first;
@@ -242,7 +242,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   return Start::Waiting;
 }
 
-void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
+void Tracker::initialize(Frame& frame, const Frame& tracked, const std::vector<bool>& keep) {
   start_frames_rejected_ = 0;
   frame.set_pose(Eigen::Isometry3d::Identity());
   KeyFramePtr kf = map_->create_keyframe(frame);
@@ -268,7 +268,7 @@ void Tracker::initialize(Frame& frame, const std::vector<bool>& keep) {
   for (std::size_t i = 0; i < keep.size(); ++i) last_frame_left_out_[i] = !keep[i];
   state_ = TrackingState::Ok;
   if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
-  if (link_.insert_keyframe) link_.insert_keyframe(kf);
+  if (link_.insert_keyframe) link_.insert_keyframe(kf, tracked);
 }
 
 // Re-anchors the last frame on its reference keyframe (which local BA may
@@ -542,7 +542,7 @@ void Tracker::create_keyframe(Frame& frame) {
   last_keyframe_ = kf;
   last_keyframe_frame_id_ = frame.id();
   keyframe_budget_.spend(frame.timestamp());
-  if (link_.insert_keyframe) link_.insert_keyframe(kf);
+  if (link_.insert_keyframe) link_.insert_keyframe(kf, frame);
 }
 
 }  // namespace stillslam

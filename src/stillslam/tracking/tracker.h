@@ -21,7 +21,10 @@ namespace stillslam {
 
 // How tracking talks to local mapping (wired by System; all optional).
 struct LocalMappingLink {
-  std::function<void(KeyFramePtr)> insert_keyframe;
+  // A new keyframe and the frame being tracked when it was made: the keyframe
+  // is made from that frame, except the first keyframe of a map started from
+  // an earlier frame (kf->frame_id() tells).
+  std::function<void(KeyFramePtr, const Frame&)> insert_keyframe;
   // Asked with the frame's timestamp (the mapper may model its busy time on it).
   std::function<bool(double)> accepts_keyframes;  // idle
   std::function<std::size_t(double)> queued_keyframes;
@@ -76,7 +79,8 @@ class Tracker {
   // no check, from this frame); sets the reason while waiting.
   Start try_to_start_map(Frame& frame, TrackingResult& result);
   // keep: per keypoint, may become a map point (empty: all).
-  void initialize(Frame& frame, const std::vector<bool>& keep = {});
+  // The first keyframe, from `frame`, while `tracked` (the same or a later frame) is tracked.
+  void initialize(Frame& frame, const Frame& tracked, const std::vector<bool>& keep = {});
   bool track_with_motion_model(Frame& frame, TrackingResult& result);
   bool track_reference_keyframe(Frame& frame, TrackingResult& result);
   bool track_while_lost(Frame& frame, TrackingResult& result);
