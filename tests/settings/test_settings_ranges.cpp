@@ -65,6 +65,8 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.initConfirmFrames", "1000", "is 1000: must be in [0, 100]"},
     {"Tracking.initUnmaskedConfirmFrames", "-1", "is -1: must be in [0, 100]"},
     {"Tracking.initUnmaskedConfirmFrames", "1000", "is 1000: must be in [0, 100]"},
+    {"Tracking.initUnmaskedTrustFrames", "-1", "is -1: must be in [0, 1000]"},
+    {"Tracking.initUnmaskedTrustFrames", "5000", "is 5000: must be in [0, 1000]"},
     {"Tracking.initWaitFrames", "-1", "is -1: must be in [0, 100000]"},
     {"Tracking.initWaitFrames", "1e9", "is 1e+09: must be in [0, 100000]"},
     {"Tracking.initMaxMaskedFraction", "1.5", "is 1.5: must be in [0, 1]"},

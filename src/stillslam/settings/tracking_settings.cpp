@@ -12,6 +12,8 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("initConfirmFrames", tracker.init_confirm_frames, "TrackerOptions.init_confirm_frames", {0, 100});
   keys.integer("initUnmaskedConfirmFrames", tracker.init_unmasked_confirm_frames,
                "TrackerOptions.init_unmasked_confirm_frames", {0, 100});
+  keys.integer("initUnmaskedTrustFrames", tracker.init_unmasked_trust_frames,
+               "TrackerOptions.init_unmasked_trust_frames", {0, 1000});
   keys.integer("initWaitFrames", tracker.init_wait_frames, "TrackerOptions.init_wait_frames", {0, 100000});
   InitialViewCheckOptions& view = tracker.initial_view;
   keys.number("initMaxMaskedFraction", view.max_masked_fraction, "InitialViewCheckOptions.max_masked_fraction", {0, 1});

@@ -18,24 +18,25 @@ std::optional<PosePrior> motion_prior(const Eigen::Isometry3d& predicted, const 
 }
 
 int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& evidence,
-                           const std::optional<PosePrior>& prior, const MotionPriorOptions& options, MotionPriorStep* step) {
+                           const std::optional<PosePrior>& prior, const MotionPriorOptions& options, MotionPriorStep* step,
+                           const StartEvidence* start_evidence) {
   MotionPriorStep local;
   if (step == nullptr) step = &local;
   *step = MotionPriorStep{};
-  if (!prior) return refine_pose_on_evidence(frame, pose, evidence);
+  if (!prior) return refine_pose_on_evidence(frame, pose, evidence, nullptr, start_evidence);
   if (options.gate <= 0) {
     step->applied = true;
-    return refine_pose_on_evidence(frame, pose, evidence, &*prior);
+    return refine_pose_on_evidence(frame, pose, evidence, &*prior, start_evidence);
   }
   const Eigen::Isometry3d start = frame.T_cam_world();
-  const int free_inliers = refine_pose_on_evidence(frame, pose, evidence);
+  const int free_inliers = refine_pose_on_evidence(frame, pose, evidence, nullptr, start_evidence);
   step->offset = (camera_centre(frame.T_cam_world()) - camera_centre(prior->T_cam_world)).norm();
   if (step->offset <= options.gate) return free_inliers;
   const Eigen::Isometry3d free_pose = frame.T_cam_world();
   std::vector<bool> free_outlier(frame.size());
   for (std::size_t i = 0; i < frame.size(); ++i) free_outlier[i] = frame.is_outlier(i);
   frame.set_pose(start);
-  const int inliers = refine_pose_on_evidence(frame, pose, evidence, &*prior);
+  const int inliers = refine_pose_on_evidence(frame, pose, evidence, &*prior, start_evidence);
   int rejected = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     rejected += frame.map_point(i) && !free_outlier[i] && frame.is_outlier(i);
@@ -47,7 +48,7 @@ int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const
     for (std::size_t i = 0; i < kept.size(); ++i) {
       if (kept.is_outlier(i)) kept.set_map_point(i, nullptr);
     }
-    refine_pose_on_evidence(kept, pose, evidence);
+    refine_pose_on_evidence(kept, pose, evidence, nullptr, start_evidence);
     step->refit_offset = (camera_centre(kept.T_cam_world()) - camera_centre(prior->T_cam_world)).norm();
     keep = step->refit_offset <= options.gate;
   }

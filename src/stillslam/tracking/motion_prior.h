@@ -73,9 +73,10 @@ struct MotionPriorFrame {
 
 // refine_pose_on_evidence (static_evidence.h) with the prior and its gate;
 // without a prior it is refine_pose_on_evidence. `step` (optional) tells
-// what the gate saw. Returns the number of inliers.
+// what the gate saw; `start` (optional) is passed on to
+// refine_pose_on_evidence. Returns the number of inliers.
 int refine_pose_with_prior(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& evidence,
                            const std::optional<PosePrior>& prior, const MotionPriorOptions& options,
-                           MotionPriorStep* step = nullptr);
+                           MotionPriorStep* step = nullptr, const StartEvidence* start = nullptr);
 
 }  // namespace stillslam

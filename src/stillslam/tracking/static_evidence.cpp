@@ -7,6 +7,7 @@
 #include "stillslam/map/keyframe.h"
 #include "stillslam/optimize/reprojection_costs.h"
 #include "stillslam/tracking/pose_refinement.h"
+#include "stillslam/tracking/start_evidence.h"
 
 namespace stillslam {
 
@@ -31,7 +32,7 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 }
 
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
-                            const PosePrior* prior) {
+                            const PosePrior* prior, const StartEvidence* start) {
   if (!options.enabled) return refine_pose(frame, pose, prior);
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> trusted, others;
@@ -40,7 +41,9 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
     const PoseObservation obs = pose_observation(frame, i);
-    if (has_static_evidence(*mp, options) && !recently_rejected(*mp, options, frame.id())) {
+    const bool evidence = (has_static_evidence(*mp, options) || (start && start->holds(*mp, frame.id()))) &&
+                          !recently_rejected(*mp, options, frame.id());
+    if (evidence) {
       trusted.push_back(obs);
       trusted_index.push_back(i);
     } else {

@@ -16,6 +16,8 @@
 
 namespace stillslam {
 
+class StartEvidence;  // tracking/start_evidence.h
+
 struct StaticEvidenceOptions {
   // Tracking.staticEvidencePose: 0 off (all matches move the pose, ORB-SLAM's
   // rule). On by default: on the issue #20 renders it took --no-segmentation
@@ -52,8 +54,9 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 // refine_pose (tracking/pose_refinement.h) with the rule above: outlier
 // flags are set on all matches, the pose comes from those with evidence.
 // Returns the number of inlier observations. A prior (optimize/pose_prior.h)
-// joins the optimization when given.
+// joins the optimization when given. `start` (optional): the points a map
+// start's check confirmed count as having evidence in its window.
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
-                            const PosePrior* prior = nullptr);
+                            const PosePrior* prior = nullptr, const StartEvidence* start = nullptr);
 
 }  // namespace stillslam

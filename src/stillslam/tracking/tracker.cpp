@@ -57,6 +57,7 @@ void Tracker::start_new_map(Map& map) {
   start_confirmations_ = 0;
   start_frames_rejected_ = 0;
   start_gap_frames_ = 1;
+  start_evidence_.reset();
 }
 
 void Tracker::switch_map(Map& map) { map_ = &map; }
@@ -121,6 +122,14 @@ TrackingResult Tracker::track(Frame& frame) {
     } else {
       velocity_.reset();
     }
+    // The keypoints whose match this frame rejected, in the start's window:
+    // neither keyframe nor visual-odometry points.
+    const bool start_window = start_evidence_.active(frame.id());
+    std::vector<bool> rejected;
+    if (start_window) {
+      rejected.assign(frame.size(), false);
+      for (std::size_t i = 0; i < frame.size(); ++i) rejected[i] = frame.map_point(i) && frame.is_outlier(i);
+    }
     // A predicted pose matched nothing: no keyframe from it.
     bool want_keyframe = !options_.localization_only && result.sparse_view != SparseView::Predicted &&
                          need_new_keyframe(frame, result.inliers);
@@ -129,7 +138,7 @@ TrackingResult Tracker::track(Frame& frame) {
       want_keyframe = false;
     }
     if (want_keyframe) {
-      create_keyframe(frame);
+      create_keyframe(frame, start_window);
       result.new_keyframe = true;
       if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
     }
@@ -141,7 +150,7 @@ TrackingResult Tracker::track(Frame& frame) {
     result.reference = reference_keyframe_;
     result.T_cam_reference = T_last_ref_;
     last_frame_ = frame;
-    last_frame_left_out_.clear();
+    last_frame_left_out_ = std::move(rejected);
   } else {
     state_ = TrackingState::Lost;
     velocity_.reset();
@@ -214,6 +223,10 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
         start_candidate_.reset();
         initialize(first, frame, keep);
+        if (unmasked && options_.init_unmasked_trust_frames > 0) {
+          start_evidence_.begin(reference_keyframe_->map_points(),
+                                frame.id() + static_cast<std::uint64_t>(options_.init_unmasked_trust_frames));
+        }
         // The first frame is at identity: the motion model starts this frame
         // at the check's PnP motion, however many frames were dropped between.
         velocity_ = check.T_next_first;
@@ -356,7 +369,7 @@ bool Tracker::track_reference_keyframe(Frame& frame, TrackingResult& result) {
     result.reason = "reference keyframe: " + std::to_string(matches) + " matches";
     return false;
   }
-  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence);
+  refine_pose_on_evidence(frame, options_.pose, options_.static_evidence, nullptr, &start_evidence_);
   if (options_.probe) options_.probe(TrackingStage::ReferenceKeyFrame, frame, *map_);
   const int inliers = discard_outliers(frame);
   if (inliers < kMinMotionInliers) {
@@ -452,7 +465,8 @@ void Tracker::cull_outlier_streaks(const Frame& frame, int inliers) {
 int Tracker::refine_stage_pose(Frame& frame, TrackingResult& result) {
   MotionPriorStep step;
   const int inliers =
-      refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior, &step);
+      refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior, &step,
+                             &start_evidence_);
   result.motion_prior.add(step);
   return inliers;
 }
@@ -501,7 +515,7 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   return admission.insert;
 }
 
-void Tracker::create_keyframe(Frame& frame) {
+void Tracker::create_keyframe(Frame& frame, bool start_window) {
   // Temporary odometry points never enter keyframes, nor do outlier matches;
   // a keypoint whose match failed the pose check (it moved, or was
   // mismatched) does not become a new depth point either.
@@ -509,7 +523,7 @@ void Tracker::create_keyframe(Frame& frame) {
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
-    if (frame.is_outlier(i)) failed_match[i] = options_.skip_outlier_keypoints;
+    if (frame.is_outlier(i)) failed_match[i] = options_.skip_outlier_keypoints || start_window;
     if (mp->num_observations() < 1 || frame.is_outlier(i)) frame.set_map_point(i, nullptr);
   }
   KeyFramePtr kf = map_->create_keyframe(frame);
@@ -522,7 +536,9 @@ void Tracker::create_keyframe(Frame& frame) {
   const double close_depth = frame.setup().close_depth;
   // The previous frame confirms new depth points (tracking/depth_point_check.h)
   // when it directly precedes this one.
-  const bool check = options_.new_point_check.enabled && last_frame_.has_pose() && last_frame_.id() + 1 == frame.id();
+  // In the start's window the previous tracked frame checks them however far back it lies.
+  const bool check = last_frame_.has_pose() &&
+                     ((options_.new_point_check.enabled && last_frame_.id() + 1 == frame.id()) || start_window);
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i) && !failed_match[i]) {
       const Eigen::Vector3d p = *kf->unproject(i);

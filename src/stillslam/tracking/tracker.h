@@ -14,6 +14,7 @@
 #include "stillslam/map/map.h"
 #include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/motion_prior.h"
+#include "stillslam/tracking/start_evidence.h"
 #include "stillslam/tracking/tracker_options.h"
 #include "stillslam/tracking/tracking_state.h"
 
@@ -98,7 +99,9 @@ class Tracker {
   // frame's motion prior (tracking/motion_prior.h), if any.
   int refine_stage_pose(Frame& frame, TrackingResult& result);
   bool need_new_keyframe(const Frame& frame, int inliers) const;
-  void create_keyframe(Frame& frame);
+  // In the start's trust window (start_evidence_), new depth points only where
+  // the match was not rejected and the previous frame saw the point in place.
+  void create_keyframe(Frame& frame, bool start_window = false);
 
   Map* map_;  // never null
   TrackerOptions options_;
@@ -128,6 +131,8 @@ class Tracker {
   int start_confirmations_ = 0;
   int start_frames_rejected_ = 0;  // frames that had the depth but failed the check
   int start_gap_frames_ = 1;  // frames between the first keyframe and the frame that started the map
+  // After a start checked without masks: its checked points as evidence (tracking/start_evidence.h).
+  StartEvidence start_evidence_;
 };
 
 }  // namespace stillslam

@@ -27,6 +27,11 @@ struct TrackerOptions {
   // depth. 3 took n3 from 0.47/0.54 m to 0.16/0.088 m (stereo/RGB-D) but
   // wx RGB-D from 5 mm to 0.23 m (bench/README.md, issue #20 session 10).
   int init_unmasked_confirm_frames = 0;
+  // After such a start, for this many frames the first keyframe's points
+  // count as static evidence, and no visual-odometry or keyframe depth point
+  // is made where a match was rejected or that the previous frame did not
+  // see in place (tracking/start_evidence.h). 0: the start check alone.
+  int init_unmasked_trust_frames = 10;
   int init_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
