@@ -67,6 +67,23 @@ TEST(MotionSettings, KeptPointFramesBinds) {
   EXPECT_NE(e.find("Motion.keptPointFrames"), std::string::npos) << e;
 }
 
+TEST(MotionSettings, KeptPointsOutOfPoseBinds) {
+  TempDir dir;
+  EXPECT_FALSE(load_settings(dir.write("a.yaml", kBase)).motion.kept_points_out_of_pose);
+  EXPECT_TRUE(
+      load_settings(dir.write("b.yaml", kBase + "Motion.keptPointsOutOfPose: 1\n")).motion.kept_points_out_of_pose);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptPointsOutOfPose: 2\n");
+  EXPECT_NE(e.find("Motion.keptPointsOutOfPose"), std::string::npos) << e;
+}
+
+TEST(MotionSettings, FreeSpaceShareBinds) {
+  TempDir dir;
+  EXPECT_DOUBLE_EQ(load_settings(dir.write("a.yaml", kBase)).motion.free_space_share, 0);
+  EXPECT_DOUBLE_EQ(load_settings(dir.write("b.yaml", kBase + "Motion.freeSpaceShare: 0.3\n")).motion.free_space_share, 0.3);
+  const std::string e = test::settings_error(dir, kBase + "Motion.freeSpaceShare: 1.5\n");
+  EXPECT_NE(e.find("Motion.freeSpaceShare"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, SparseViewKeysBind) {
   TempDir dir;
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));

@@ -28,16 +28,37 @@ const cv::Rect kPerson(120, 140, 140, 220);  // in frame 0
 const cv::Rect kBox(420, 200, 110, 110);     // in frame 0
 
 cv::Rect person_at(int k) { return kPerson - cv::Point(kShiftPx * k, 0); }
-cv::Rect box_at(int k, bool box_moves) { return kBox - cv::Point(kShiftPx * k - (box_moves ? kBoxSpeedPx * k : 0), 0); }
+cv::Rect box_at(int k, bool box_moves, int speed = kBoxSpeedPx) {
+  return kBox - cv::Point(kShiftPx * k - (box_moves ? speed * k : 0), 0);
+}
+
+// A box without texture (no features to match) at its own depth in front of
+// the wall, moving `speed` pixels a frame in the image (Motion.freeSpaceShare).
+struct PlainBox {
+  bool enabled = false;
+  int speed = kBoxSpeedPx;
+  float depth = 1.0f;
+};
 
 struct Scene {
   cv::Mat wall = test::blurred_noise(480, 640 + 200, 1);
   cv::Mat box = test::blurred_noise(kBox.height, kBox.width, 2);
   bool box_moves = true;
+  PlainBox plain;
   cv::Mat gray(int k) const {
     cv::Mat img = wall(cv::Rect(kShiftPx * k, 0, 640, 480)).clone();
-    box.copyTo(img(box_at(k, box_moves)));
+    const cv::Rect r = box_at(k, box_moves, plain.speed) & cv::Rect(0, 0, 640, 480);
+    if (plain.enabled) {
+      img(r).setTo(128);
+    } else {
+      box.copyTo(img(box_at(k, box_moves)));
+    }
     return img;
+  }
+  cv::Mat depth(int k) const {
+    cv::Mat d(480, 640, CV_32F, cv::Scalar(static_cast<float>(kDepth)));
+    if (plain.enabled) d(box_at(k, box_moves, plain.speed) & cv::Rect(0, 0, 640, 480)).setTo(plain.depth);
+    return d;
   }
 };
 
@@ -45,8 +66,8 @@ struct Scene {
 class SceneSegmenter final : public Segmenter {
  public:
   // The person is not detected in frames [hide_from, hide_to).
-  SceneSegmenter(bool box_moves, int hide_from, int hide_to)
-      : box_moves_(box_moves), hide_from_(hide_from), hide_to_(hide_to) {}
+  SceneSegmenter(bool box_moves, int hide_from, int hide_to, int box_speed = kBoxSpeedPx)
+      : box_moves_(box_moves), hide_from_(hide_from), hide_to_(hide_to), box_speed_(box_speed) {}
   std::vector<Detection> segment(const cv::Mat& bgr) override {
     const int k = calls_++;
     auto detection = [&](int class_id, const char* name, cv::Rect r) {
@@ -56,16 +77,18 @@ class SceneSegmenter final : public Segmenter {
       d.score = 1.f;
       d.box = r;
       d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
-      d.mask(r).setTo(255);
+      d.mask(r & cv::Rect(0, 0, bgr.cols, bgr.rows)).setTo(255);
       return d;
     };
-    if (k >= hide_from_ && k < hide_to_) return {detection(-1, "box", box_at(k, box_moves_))};
-    return {detection(0, "person", person_at(k)), detection(-1, "box", box_at(k, box_moves_))};
+    const cv::Rect box = box_at(k, box_moves_, box_speed_);
+    if (k >= hide_from_ && k < hide_to_) return {detection(-1, "box", box)};
+    return {detection(0, "person", person_at(k)), detection(-1, "box", box)};
   }
 
  private:
   bool box_moves_;
   int hide_from_, hide_to_;
+  int box_speed_;
   int calls_ = 0;
 };
 
@@ -83,18 +106,20 @@ struct StageRun {
 
 // frame_features: the frames' ORB budget.
 StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1,
-                   int frame_features = OrbOptions{}.n_features, bool persistent_points = false) {
+                   int frame_features = OrbOptions{}.n_features, bool persistent_points = false,
+                   PlainBox plain = {}) {
   OrbOptions frame_orb;
   frame_orb.n_features = frame_features;
   const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
   const auto setup = std::make_shared<CameraSetup>(PinholeCamera(calib, 40.0), ScalePyramid(OrbOptions{}), 3.0);
-  SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves, hide_from, hide_to), {0}, 0);
+  SegmentationWorker worker(std::make_unique<SceneSegmenter>(box_moves, hide_from, hide_to, plain.speed), {0}, 0);
   FrameBuilder builder(setup, SensorType::Rgbd, frame_orb, &worker);
   options.enabled = true;
   MotionStage stage(setup->camera, OrbOptions{}, {0}, 0, options);
   builder.set_motion_stage(&stage);
   Scene scene;
   scene.box_moves = box_moves;
+  scene.plain = plain;
   StageRun out;
   std::vector<MapPointPtr> points;  // by keypoint index, with persistent_points
   std::map<std::uint64_t, int> first_flagged;  // by point id
@@ -103,7 +128,7 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
     SensorFrame in;
     in.gray = scene.gray(k);
     cv::cvtColor(in.gray, in.color, cv::COLOR_GRAY2BGR);
-    in.depth = cv::Mat(480, 640, CV_32F, cv::Scalar(static_cast<float>(kDepth)));
+    in.depth = scene.depth(k);
     in.index = static_cast<std::size_t>(k);
     in.name = "frame " + std::to_string(k);
     FrameBuildStats stats;
@@ -142,7 +167,7 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
       return mask.empty() ? 0.0 : cv::countNonZero(mask(r)) / static_cast<double>(r.area());
     };
     out.masked_share_person.push_back(share(person_at(k)));
-    out.masked_share_box.push_back(share(box_at(k, box_moves)));
+    out.masked_share_box.push_back(share(box_at(k, box_moves, plain.speed)));
   }
   return out;
 }
@@ -253,6 +278,33 @@ TEST(MotionStage, StillBoxStaysUnmasked) {
     EXPECT_EQ(r.masked_share_box[k], 0.0) << k;
     EXPECT_EQ(r.stats[k].moving_instances, 0) << k;
   }
+}
+
+// A plain box (no features to match) pushed 10 px a frame at 1 m in front of
+// the 2 m wall: found moving from depth (Motion.freeSpaceShare) at the first
+// comparison and masked from the next frame on; with freeSpaceShare 0 never.
+// The same box standing still is never masked.
+TEST(MotionStage, PlainBoxFoundMovingFromDepth) {
+  MotionOptions o;
+  o.free_space_share = 0.3;
+  PlainBox plain;
+  plain.enabled = true;
+  plain.speed = 10;
+  const StageRun r = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k <= o.span; ++k) EXPECT_EQ(r.stats[k].moving_instances, 0) << k;
+  for (int k = o.span + 1; k < 20; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(r.stats[k].moving_instances, 1);
+    EXPECT_GT(r.masked_share_box[k], 0.95);
+  }
+  o.free_space_share = 0;
+  const StageRun off = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(off.stats[k].moving_instances, 0) << k;
+  // Still at 1 m: it slides 4 px a frame in the image as the camera moves (2 px at the wall's 2 m).
+  o.free_space_share = 0.3;
+  plain.speed = -kShiftPx;
+  const StageRun still = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(still.stats[k].moving_instances, 0) << k;
 }
 
 TEST(MotionStage, OptionsOutOfRangeNameTheField) {

@@ -141,6 +141,77 @@ TEST(StaticEvidence, PoseFollowsThePointsWithEvidence) {
   EXPECT_GT(off, 5e-3);
 }
 
+// A person kept as static by the motion stage (issue #19): the cluster's
+// points have evidence like the background's but are flagged
+// on_dynamic_instance, and the person moved 4 cm since they were made. With
+// leave_out_kept_points they do not move the pose but stay matched (inliers
+// where they still fit); with fewer than min_points other matches the pose
+// comes from all of them.
+TEST(StaticEvidence, PointsOnAKeptPersonDoNotMoveThePose) {
+  ClusterWorld world;
+  Map map;
+  const Eigen::Isometry3d T = test::pose_at(0.02);
+  std::vector<bool> on_cluster;
+  Frame frame = world.make_frame(31, T, true, &on_cluster);
+  world.move_cluster(Eigen::Vector3d(0, 0, 0.04));
+  Frame before = world.make_frame(31, T, true);
+  before.set_pose(T);
+  ASSERT_EQ(before.size(), frame.size());
+  Frame early_frame = world.make_frame(0, T, true), late_frame = world.make_frame(30, T, true);
+  early_frame.set_pose(T);
+  late_frame.set_pose(T);
+  const KeyFramePtr early = map.create_keyframe(early_frame), late = map.create_keyframe(late_frame);
+  std::vector<std::size_t> background;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    MapPointPtr mp = map.create_map_point(*before.unproject(i), late.get());
+    mp->add_observation(late.get(), i);
+    mp->add_observation(early.get(), i);
+    if (on_cluster[i]) {
+      mp->mark_on_dynamic_instance();
+    } else {
+      background.push_back(i);
+    }
+    frame.set_map_point(i, mp);
+  }
+  const int cluster_matches = static_cast<int>(std::count(on_cluster.begin(), on_cluster.end(), true));
+  ASSERT_GT(cluster_matches, 400);
+
+  auto error_of = [&](Frame f, const StaticEvidenceOptions& o, int* cluster_inliers) {
+    f.set_pose(test::pose_at(0.02) * Eigen::Translation3d(0.01, -0.01, 0.02));
+    refine_pose_on_evidence(f, PoseOptimizerOptions{}, o);
+    *cluster_inliers = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) *cluster_inliers += on_cluster[i] && f.map_point(i) && !f.is_outlier(i);
+    return (f.T_cam_world().inverse().translation() - T.inverse().translation()).norm();
+  };
+  StaticEvidenceOptions options;
+  int in_on = 0, in_off = 0;
+  options.leave_out_kept_points = true;
+  const double on = error_of(frame, options, &in_on);
+  options.leave_out_kept_points = false;
+  const double off = error_of(frame, options, &in_off);
+  std::printf("pose error %.6f m leaving the kept person out (%d of %d of its matches inliers), %.6f m with it\n",
+              on, in_on, cluster_matches, off);
+  EXPECT_LT(on, 1e-4);
+  EXPECT_GT(off, 2e-3);
+  // Its matches are still classified against the pose: those the sway left near fit.
+  EXPECT_GT(in_on, 0);
+  // Without the static evidence rule too.
+  options.enabled = false;
+  options.leave_out_kept_points = true;
+  EXPECT_LT(error_of(frame, options, &in_on), 1e-4);
+
+  // Only 30 background matches (under min_points 40): all matches move the pose.
+  Frame sparse = frame;
+  for (std::size_t k = 30; k < background.size(); ++k) sparse.set_map_point(background[k], nullptr);
+  options = StaticEvidenceOptions{};
+  options.leave_out_kept_points = true;
+  const double sparse_on = error_of(sparse, options, &in_on);
+  options.leave_out_kept_points = false;
+  const double sparse_off = error_of(sparse, options, &in_off);
+  EXPECT_NEAR(sparse_on, sparse_off, 1e-9);
+  EXPECT_GT(sparse_on, 2e-3);
+}
+
 struct ClusterRun {
   double max_error = 0;  // camera position, m, over the frames after the cluster came in
   double final_error = 0;

@@ -15,6 +15,8 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.number("objectMovingFactor", options.object_moving_factor, "MotionOptions.object_moving_factor", {2, 100});
   keys.number("objectMovingFloorPx", options.object_moving_floor_px, "MotionOptions.object_moving_floor_px", {1.5, 100});
   keys.integer("keptPointFrames", options.kept_point_frames, "MotionOptions.kept_point_frames", {0, 100000});
+  keys.flag("keptPointsOutOfPose", options.kept_points_out_of_pose, "MotionOptions.kept_points_out_of_pose");
+  keys.number("freeSpaceShare", options.free_space_share, "MotionOptions.free_space_share", {0, 1});
   keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
   keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");

@@ -136,6 +136,7 @@ void System::build_pipeline(const Settings& settings) {
     motion_stage_ = std::make_unique<MotionStage>(setup_->camera, settings.orb, dynamic_class_ids_,
                                                   settings.segmentation.mask_dilation, settings.motion);
     builder_->set_motion_stage(motion_stage_.get());
+    options_.trajectory_refinement.leave_out_kept_points = settings.motion.kept_points_out_of_pose;
   }
 
   Map& map = atlas_->active_map();
@@ -198,6 +199,7 @@ void System::build_pipeline(const Settings& settings) {
   tracking.localization_only = options_.localization_only;
   tracking.probe = options_.tracking_probe;
   tracking.sparse_view = settings.motion.sparse_view;
+  tracking.static_evidence.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_pose;
   // Held keyframes are checked later instead of deferred.
   if (async_masks_ && !keyframe_hold_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));

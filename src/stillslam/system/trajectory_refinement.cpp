@@ -29,7 +29,7 @@ FrameObservations collect_frame_observations(const Frame& frame) {
 std::optional<Eigen::Isometry3d> refine_frame_pose(const CameraSetup& setup, const Eigen::Isometry3d& T_cam_world,
                                                    const FrameObservations& frame,
                                                    const TrajectoryRefinementOptions& options) {
-  std::vector<PoseObservation> observations;
+  std::vector<PoseObservation> observations, kept;
   observations.reserve(frame.observations.size());
   for (std::size_t k = 0; k < frame.observations.size(); ++k) {
     const MapPoint* mp = current_point(frame.points[k]);
@@ -40,7 +40,11 @@ std::optional<Eigen::Isometry3d> refine_frame_pose(const CameraSetup& setup, con
     obs.pixel = Eigen::Vector2d(o.x, o.y);
     obs.u_right = o.u_right;
     obs.inv_sigma2 = setup.pyramid.inv_sigma2[o.level];
-    observations.push_back(obs);
+    (options.leave_out_kept_points && mp->on_dynamic_instance() ? kept : observations).push_back(obs);
+  }
+  // Too few without the kept person's points: all of them.
+  if (static_cast<int>(observations.size()) < std::max(3, options.min_inliers)) {
+    observations.insert(observations.end(), kept.begin(), kept.end());
   }
   if (static_cast<int>(observations.size()) < std::max(3, options.min_inliers)) return std::nullopt;
   const PoseOptimizationResult result = optimize_pose(setup.camera, T_cam_world, observations, options.pose);

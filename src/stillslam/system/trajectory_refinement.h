@@ -26,6 +26,11 @@ struct TrajectoryRefinementOptions {
   // Fewer surviving observations (or inliers after the re-estimate) than
   // this: the frame keeps its tracked pose.
   int min_inliers = 30;
+  // Points on a person the motion stage kept as static
+  // (MapPoint::on_dynamic_instance, issue #19) leave the re-estimate when at
+  // least min_inliers other observations remain (System sets it from
+  // Motion.enabled and Motion.keptPointsOutOfPose).
+  bool leave_out_kept_points = false;
   PoseOptimizerOptions pose;
 };
 
@@ -46,7 +51,8 @@ FrameObservations collect_frame_observations(const Frame& frame);
 
 // Motion-only BA from T_cam_world against the observed points' current
 // positions. Points fused into others count as the point that replaced them;
-// culled points are left out. nullopt when too few observations or inliers
+// culled points are left out, and so are points on a kept person when the
+// options say so and enough others remain. nullopt when too few observations or inliers
 // remain (keep the tracked pose). The caller holds the points' map lock.
 std::optional<Eigen::Isometry3d> refine_frame_pose(const CameraSetup& setup, const Eigen::Isometry3d& T_cam_world,
                                                    const FrameObservations& frame,

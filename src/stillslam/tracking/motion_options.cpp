@@ -16,6 +16,8 @@ void MotionOptions::check() const {
   in_range("MotionOptions.place_memory_frames", place_memory_frames, 0, 100000);
   in_range("MotionOptions.object_moving_factor", object_moving_factor, 2, 100);
   in_range("MotionOptions.object_moving_floor_px", object_moving_floor_px, 1.5, 100);
+  in_range("MotionOptions.free_space_share", free_space_share, 0, 1);
+  free_space.check();
   check_options().check();
   sparse_view.check();
 }

@@ -2,6 +2,7 @@
 // Settings of the motion-aware dynamic handling (issue #19, `Motion.*`):
 // segmented instances are judged by their motion (instance_motion_check.h)
 // instead of by class alone. Off by default (see config/README.md).
+#include "stillslam/tracking/free_space_check.h"
 #include "stillslam/tracking/instance_motion_check.h"
 #include "stillslam/tracking/instance_places.h"
 #include "stillslam/tracking/sparse_view.h"
@@ -30,6 +31,21 @@ struct MotionOptions {
   // sways and breathes, and a point kept longer carries that into the pose
   // (30: bench/README.md, issue #19 session 10).
   int kept_point_frames = 30;
+  // Matches on a person kept as static take no part in the frame's pose
+  // (tracking's pose stages and the final trajectory refinement) when enough
+  // other matches remain; they are still classified, tracked and counted
+  // (tracking/static_evidence.h, system/trajectory_refinement.h).
+  // Off: no gain measured yet (bench/README.md, issue #19 session 11).
+  bool kept_points_out_of_pose = false;
+  // An object (not of a dynamic class) without a verdict from its matched
+  // features is also found moving from depth (tracking/free_space_check.h):
+  // when at least this share of its sampled pixels, and 3x the share of the
+  // pixels of no instance, were seen through in the view `span` frames
+  // earlier (0: never; needs a depth image and no lens distortion). 0.3 was
+  // the bar tried.
+  // Off until measured on more renders (bench/README.md, issue #19 session 11).
+  double free_space_share = 0;
+  FreeSpaceOptions free_space;
   // A new instance within this distance (world frame) of where one of its
   // class was last seen takes over its evidence (instance_places.h); 0: never.
   double place_radius_m = 0.5;

@@ -24,6 +24,8 @@ OrbOptions instance_orb(OrbOptions orb, const MotionOptions& options) {
 
 // Context around an instance's box for the ORB patch and the FAST border.
 constexpr int kBoxPad = 2 * (BriefPattern::kRadius + 1);
+// Fewer sampled pixels of an object (a sliver at the border): no verdict from depth.
+constexpr int kMinFreeSpaceSamples = 30;
 
 }  // namespace
 
@@ -46,6 +48,7 @@ void MotionStage::reset() {
   age_.clear();
   judged_ = 0;
   kept_since_.clear();
+  depth_history_.clear();
 }
 
 std::uint32_t MotionStage::evidence_id(std::uint32_t stable) const {
@@ -123,6 +126,7 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
                           MotionFrameStats& stats) {
   if (!pending_) return;
   stats.judged = true;
+  depth_ = depth.empty() || depth.type() != CV_32F ? cv::Mat() : depth.clone();
   // Each instance's place in the camera frame, from its pixels with depth:
   // the centroid's ray at the median depth (known from its first frame on,
   // features or not).
@@ -257,6 +261,34 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
   }
 }
 
+void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckResult& r) {
+  if (options_.free_space_share <= 0 || depth_.empty() || camera_.has_distortion()) {
+    depth_history_.clear();
+    return;
+  }
+  depth_history_.emplace_back(frame.T_cam_world(), depth_);
+  if (static_cast<int>(depth_history_.size()) > options_.span + 1) depth_history_.pop_front();
+  if (static_cast<int>(depth_history_.size()) < options_.span + 1) return;
+  // Objects the matched features gave no verdict this frame.
+  std::set<std::uint32_t> ids{0};
+  for (const auto& [id, category] : categories_) {
+    if (dynamic_ids_.count(id) || moving_.count(id)) continue;
+    const auto s = std::find_if(r.instances.begin(), r.instances.end(),
+                                [id = id](const InstanceMotionState& st) { return static_cast<std::uint32_t>(st.id) == id; });
+    if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
+  }
+  if (ids.size() == 1) return;
+  const auto& [T_earlier_world, earlier_depth] = depth_history_.front();
+  const Eigen::Isometry3d T_earlier_current = T_earlier_world * frame.T_cam_world().inverse();
+  const auto counts = count_seen_through(camera_, depth_, labels_, ids, T_earlier_current, earlier_depth,
+                                         options_.free_space);
+  const double background = counts.at(0).share();
+  for (const auto& [id, c] : counts) {
+    if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;
+    if (c.share() >= std::max(options_.free_space_share, 3 * background)) moving_.insert(id);
+  }
+}
+
 int MotionStage::on_tracked(const Frame& frame, bool tracked) {
   if (!pending_) return 0;
   pending_ = false;
@@ -298,6 +330,7 @@ int MotionStage::on_tracked(const Frame& frame, bool tracked) {
     if (s.verdict == MotionVerdict::Disagrees) moving_.insert(id);
     if (s.is_static) moving_.erase(id);
   }
+  judge_objects_by_depth(frame, r);
   // Map points seen on an instance that is now judged moving leave the map;
   // those seen on a person kept as static are flagged so no saved map holds them.
   int culled = 0;

@@ -9,7 +9,9 @@
 // person kept as static live Motion.keptPointFrames frames only: a seated
 // person sways and breathes, and an old point carries that into the pose.
 // Masked instances are still watched through a small set of features
-// extracted inside the mask and kept apart from tracking.
+// extracted inside the mask and kept apart from tracking. An object whose
+// matched features give no verdict (too few: a plain chair) is judged from
+// depth instead (free_space_check.h, Motion.freeSpaceShare).
 //
 // An instance that comes back under a new id (it left the view, was hidden,
 // or its mask changed too much) where one of its class was last seen takes
@@ -21,6 +23,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <set>
 #include <string>
@@ -84,6 +87,9 @@ class MotionStage {
   // (relabelling them in `frame_labels` and the stage's state) and records
   // where every instance is now.
   void place_instances(const Frame& frame, std::vector<std::uint32_t>& frame_labels);
+  // Objects without a verdict from their features this frame, judged from
+  // depth against the frame span judged frames earlier (free_space_check.h).
+  void judge_objects_by_depth(const Frame& frame, const MotionCheckResult& r);
 
   PinholeCamera camera_;
   OrbOptions orb_;  // the frame's extraction settings (instance_box_features.h shares out the budget)
@@ -111,6 +117,9 @@ class MotionStage {
   std::map<std::uint32_t, Eigen::Vector3d> mask_points_;  // camera frame, from the depth image (collect())
   std::map<std::uint32_t, int> mask_pixels_;              // pixels with depth of each instance
   MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
+  cv::Mat depth_;                        // this frame's depth image (collect(); empty without one)
+  // The depth images and poses of the last span + 1 judged frames (Motion.freeSpaceShare).
+  std::deque<std::pair<Eigen::Isometry3d, cv::Mat>> depth_history_;
 };
 
 }  // namespace stillslam

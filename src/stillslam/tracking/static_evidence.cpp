@@ -33,7 +33,7 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
                             const PosePrior* prior, const StartEvidence* start) {
-  if (!options.enabled) return refine_pose(frame, pose, prior);
+  if (!options.enabled && !options.leave_out_kept_points) return refine_pose(frame, pose, prior);
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> trusted, others;
   std::vector<std::size_t> trusted_index, other_index;
@@ -41,9 +41,10 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
     const PoseObservation obs = pose_observation(frame, i);
-    const bool evidence = (has_static_evidence(*mp, options) || (start && start->holds(*mp, frame.id()))) &&
-                          !recently_rejected(*mp, options, frame.id());
-    if (evidence) {
+    const bool evidence = !options.enabled ||
+                          ((has_static_evidence(*mp, options) || (start && start->holds(*mp, frame.id()))) &&
+                           !recently_rejected(*mp, options, frame.id()));
+    if (evidence && !(options.leave_out_kept_points && mp->on_dynamic_instance())) {
       trusted.push_back(obs);
       trusted_index.push_back(i);
     } else {

@@ -37,6 +37,13 @@ struct StaticEvidenceOptions {
   // stop moving the pose. Off by default: mixed on the issue #20 renders
   // (n1 stereo 0.21 -> 0.010 m, wx 0.37 -> 0.45 m, bench/README.md).
   int quiet_frames = 0;
+  // Points matched on a person the motion stage keeps as static
+  // (MapPoint::on_dynamic_instance, issue #19) are classified against the
+  // pose like points without evidence, but do not move it: a seated person
+  // sways and breathes. With fewer than min_points trusted matches without
+  // them, the pose comes from all matches. Not a Tracking.* key: System sets
+  // it from Motion.enabled and Motion.keptPointsOutOfPose.
+  bool leave_out_kept_points = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -51,8 +58,9 @@ bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& opt
 // frames before `frame_id` (never with quiet_frames 0).
 bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& options, std::uint64_t frame_id);
 
-// refine_pose (tracking/pose_refinement.h) with the rule above: outlier
-// flags are set on all matches, the pose comes from those with evidence.
+// refine_pose (tracking/pose_refinement.h) with the rules above: outlier
+// flags are set on all matches, the pose comes from those with evidence
+// (and, with leave_out_kept_points, not on a kept person).
 // Returns the number of inlier observations. A prior (optimize/pose_prior.h)
 // joins the optimization when given. `start` (optional): the points a map
 // start's check confirmed count as having evidence in its window.
