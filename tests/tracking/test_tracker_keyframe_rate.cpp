@@ -61,10 +61,13 @@ TEST(TrackerKeyframeRate, TheDefaultBudgetBoundsTheRateOfAnIdleMapper) {
   options.keyframe_budget.per_second = 0;
   const RateRun unbounded = keyframes_made(options, 40);
 
-  // The first keyframe (the map's start) plus the burst plus the rate.
-  const double cap = 1 + budget.burst + budget.per_second * bounded.seconds;
+  // The map's first keyframes (outside the budget, one per frame here, the
+  // bucket filling only after them) plus the burst plus the rate.
+  const double cap = budget.start_keyframes + budget.burst + budget.per_second * bounded.seconds;
+  const double start_seconds = (budget.start_keyframes - 1) / 30.0;
   EXPECT_LE(bounded.keyframes, cap);
-  EXPECT_GE(bounded.keyframes, cap - 2);  // the budget, not tracking, limits it here
+  // the budget, not tracking, limits it here
+  EXPECT_GE(bounded.keyframes, cap - 2 - budget.per_second * start_seconds);
   EXPECT_GT(unbounded.keyframes, bounded.keyframes + 5);
 }
 
@@ -74,7 +77,7 @@ TEST(TrackerKeyframeRate, FramesWithFewInliersTakeKeyframesOutsideTheBudget) {
   const RateRun unbounded = keyframes_made(options, 40);
 
   // A budget that is empty after the first keyframe.
-  options.keyframe_budget = {0.001, 1};
+  options.keyframe_budget = {0.001, 1, 0};
   options.keyframe_budget_inliers = 0;  // only tracking about to fail is exempt
   const RateRun empty = keyframes_made(options, 40);
   EXPECT_LE(empty.keyframes, 3);
