@@ -22,12 +22,12 @@ int keyframes_made(KeyFrameBudget& budget, double seconds) {
 }
 
 TEST(KeyFrameBudget, NoBudgetAllowsEveryFrame) {
-  KeyFrameBudget budget({0, 2});
+  KeyFrameBudget budget({0, 2, 0});
   EXPECT_EQ(keyframes_made(budget, 2), 60);
 }
 
 TEST(KeyFrameBudget, BurstThenTheRate) {
-  KeyFrameBudget budget({5, 2});
+  KeyFrameBudget budget({5, 2, 0});
   // 2 at once, then about one every 6 frames (5 per second) over the 10 s
   // (a token whole only on the 7th frame when rounding leaves it just short).
   const int made = keyframes_made(budget, 10);
@@ -35,7 +35,7 @@ TEST(KeyFrameBudget, BurstThenTheRate) {
   EXPECT_LE(made, 2 + 50);
   // The first two come back to back (the second leaves 1/6 of a token), the
   // third waits the remaining 5/6 / 5 = 1/6 s.
-  KeyFrameBudget fresh({5, 2});
+  KeyFrameBudget fresh({5, 2, 0});
   EXPECT_TRUE(fresh.allows(0));
   fresh.spend(0);
   EXPECT_TRUE(fresh.allows(1 / 30.0));
@@ -46,7 +46,7 @@ TEST(KeyFrameBudget, BurstThenTheRate) {
 }
 
 TEST(KeyFrameBudget, KeyframesBeyondTheBudgetLeaveItEmptyNotInDebt) {
-  KeyFrameBudget budget({2, 1});
+  KeyFrameBudget budget({2, 1, 0});
   budget.spend(0);
   // Tracking about to fail takes three more within 0.1 s.
   budget.spend(0.03);
@@ -57,7 +57,7 @@ TEST(KeyFrameBudget, KeyframesBeyondTheBudgetLeaveItEmptyNotInDebt) {
 }
 
 TEST(KeyFrameBudget, TimeGoingBackAddsNothingAndResetFillsIt) {
-  KeyFrameBudget budget({1, 1});
+  KeyFrameBudget budget({1, 1, 0});
   budget.spend(10);
   EXPECT_FALSE(budget.allows(3));
   budget.spend(3);
@@ -65,6 +65,34 @@ TEST(KeyFrameBudget, TimeGoingBackAddsNothingAndResetFillsIt) {
   EXPECT_TRUE(budget.allows(4));
   budget.reset();
   EXPECT_TRUE(budget.allows(0));
+}
+
+TEST(KeyFrameBudget, AMapsFirstKeyframesAreOutsideTheBudget) {
+  // Every frame of the first 10 is a keyframe, then the full bucket (2), then
+  // the rate.
+  KeyFrameBudget exempt({5, 2, 10});
+  KeyFrameBudget plain({5, 2, 0});
+  for (int f = 0; f < 10; ++f) {
+    EXPECT_TRUE(exempt.allows(f / 30.0)) << f;
+    exempt.spend(f / 30.0);
+  }
+  EXPECT_TRUE(exempt.allows(10 / 30.0));  // the bucket is full: the burst
+  exempt.spend(10 / 30.0);
+  EXPECT_TRUE(exempt.allows(11 / 30.0));
+  exempt.spend(11 / 30.0);
+  EXPECT_FALSE(exempt.allows(12 / 30.0));  // and then the rate
+  // Over 4 s: 2 + about 5 x 4 without the exemption; with it 10 more, less
+  // the ~1.7 tokens the bucket did not gather while they came (10 frames).
+  EXPECT_EQ(keyframes_made(plain, 4), 21);
+  KeyFrameBudget fresh({5, 2, 10});
+  EXPECT_EQ(keyframes_made(fresh, 4), 30);
+  // A reset (a new map) exempts the next map's first keyframes again.
+  fresh.reset();
+  for (int f = 0; f < 12; ++f) {
+    EXPECT_TRUE(fresh.allows(5 + f / 30.0)) << f;
+    fresh.spend(5 + f / 30.0);
+  }
+  EXPECT_FALSE(fresh.allows(5 + 12 / 30.0));
 }
 
 TEST(KeyFrameBudget, OptionsOutOfRangeNameTheField) {
@@ -79,6 +107,12 @@ TEST(KeyFrameBudget, OptionsOutOfRangeNameTheField) {
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.burst");
+  }
+  try {
+    KeyFrameBudget budget({3, 2, -1});
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.start_keyframes");
   }
 }
 

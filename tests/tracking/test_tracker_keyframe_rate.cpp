@@ -56,15 +56,24 @@ TEST(TrackerKeyframeRate, TheDefaultBudgetBoundsTheRateOfAnIdleMapper) {
   TrackerOptions options;
   const KeyFrameBudgetOptions budget = options.keyframe_budget;
   ASSERT_GT(budget.per_second, 0) << "the budget is on by default";
+  ASSERT_GT(budget.start_keyframes, 1) << "a map's first keyframes are outside it by default";
   const RateRun bounded = keyframes_made(options, 40);
+
+  options.keyframe_budget.start_keyframes = 0;
+  const RateRun no_start = keyframes_made(options, 40);
 
   options.keyframe_budget.per_second = 0;
   const RateRun unbounded = keyframes_made(options, 40);
 
-  // The first keyframe (the map's start) plus the burst plus the rate.
-  const double cap = 1 + budget.burst + budget.per_second * bounded.seconds;
-  EXPECT_LE(bounded.keyframes, cap);
-  EXPECT_GE(bounded.keyframes, cap - 2);  // the budget, not tracking, limits it here
+  // Without the start exemption: the first keyframe (the map's start) plus
+  // the burst plus the rate.
+  const double cap = 1 + budget.burst + budget.per_second * no_start.seconds;
+  EXPECT_LE(no_start.keyframes, cap);
+  EXPECT_GE(no_start.keyframes, cap - 2);  // the budget, not tracking, limits it here
+  // With it (the default) the map's first keyframes come on top, less what
+  // the bucket did not gather meanwhile; never more than all of them on top.
+  EXPECT_GT(bounded.keyframes, no_start.keyframes + 2);
+  EXPECT_LE(bounded.keyframes, no_start.keyframes + budget.start_keyframes - 1);
   EXPECT_GT(unbounded.keyframes, bounded.keyframes + 5);
 }
 
@@ -74,7 +83,7 @@ TEST(TrackerKeyframeRate, FramesWithFewInliersTakeKeyframesOutsideTheBudget) {
   const RateRun unbounded = keyframes_made(options, 40);
 
   // A budget that is empty after the first keyframe.
-  options.keyframe_budget = {0.001, 1};
+  options.keyframe_budget = {0.001, 1, 0};
   options.keyframe_budget_inliers = 0;  // only tracking about to fail is exempt
   const RateRun empty = keyframes_made(options, 40);
   EXPECT_LE(empty.keyframes, 3);

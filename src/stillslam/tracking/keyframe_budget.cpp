@@ -10,6 +10,7 @@ void KeyFrameBudgetOptions::check() const {
   using namespace option_check;
   in_range("KeyFrameBudgetOptions.per_second", per_second, 0, 1000);
   in_range("KeyFrameBudgetOptions.burst", burst, 1, 1000);
+  in_range("KeyFrameBudgetOptions.start_keyframes", start_keyframes, 0, 1000);
 }
 
 KeyFrameBudget::KeyFrameBudget(KeyFrameBudgetOptions options) : options_(options) { options_.check(); }
@@ -22,10 +23,11 @@ double KeyFrameBudget::balance_at(double timestamp) const {
 }
 
 bool KeyFrameBudget::allows(double timestamp) const {
-  return options_.per_second <= 0 || balance_at(timestamp) >= 1;
+  return options_.per_second <= 0 || keyframes_ < options_.start_keyframes || balance_at(timestamp) >= 1;
 }
 
 void KeyFrameBudget::spend(double timestamp) {
+  if (keyframes_++ < options_.start_keyframes) return;  // outside the budget: the bucket stays full
   balance_ = std::max(0.0, balance_at(timestamp) - 1);
   last_timestamp_ = timestamp;
   started_ = true;
@@ -35,6 +37,7 @@ void KeyFrameBudget::reset() {
   balance_ = 0;
   last_timestamp_ = 0;
   started_ = false;
+  keyframes_ = 0;
 }
 
 }  // namespace stillslam

@@ -6,12 +6,16 @@
 // threaded runs make the same decision: it fills at per_second and holds at
 // most `burst` keyframes; an ordinary keyframe needs a whole token. Tracking
 // about to fail, or with few inliers (TrackerOptions::keyframe_budget_inliers),
-// takes its keyframe anyway (the balance stays at >= 0).
+// takes its keyframe anyway (the balance stays at >= 0). The first
+// `start_keyframes` keyframes of a map are outside the budget: a young map
+// needs them (a 40-frame sequence lost half its accuracy without them), and
+// the bucket is full after them.
 namespace stillslam {
 
 struct KeyFrameBudgetOptions {
   double per_second = 5;  // 0: no budget; 5: bench/README.md, issue #21 session 10
   double burst = 2;       // keyframes that may come back to back
+  int start_keyframes = 10;  // a map's first keyframes, outside the budget (bench/README.md, issue #21 session 11)
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -32,7 +36,8 @@ class KeyFrameBudget {
   KeyFrameBudgetOptions options_;
   double balance_ = 0;
   double last_timestamp_ = 0;
-  bool started_ = false;  // no keyframe yet: full
+  bool started_ = false;  // no keyframe in the budget yet: full
+  int keyframes_ = 0;     // made since the start or the last reset
 };
 
 }  // namespace stillslam
