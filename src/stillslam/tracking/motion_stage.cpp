@@ -126,7 +126,9 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
                           MotionFrameStats& stats) {
   if (!pending_) return;
   stats.judged = true;
-  depth_ = depth.empty() || depth.type() != CV_32F ? cv::Mat() : depth.clone();
+  // Only the depth check (Motion.freeSpaceShare) keeps earlier depth images.
+  const bool keep_depth = options_.free_space_share > 0 && !depth.empty() && depth.type() == CV_32F;
+  depth_ = keep_depth ? depth.clone() : cv::Mat();
   // Each instance's place in the camera frame, from its pixels with depth:
   // the centroid's ray at the median depth (known from its first frame on,
   // features or not).
