@@ -35,6 +35,9 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(s.segmentation.max_grow_px, 12);
   EXPECT_TRUE(d.segmentation.keyframe_hold);
   EXPECT_FALSE(s.segmentation.keyframe_hold);
+  EXPECT_FALSE(d.segmentation.provisional_points);
+  const Settings p = load_settings(dir.write("p.yaml", kTum + "Segmentation.provisionalPoints: 1\n"));
+  EXPECT_TRUE(p.segmentation.provisional_points);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -49,6 +52,9 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
       {kTum + "Segmentation.maxMaskAge: -1\n", "Segmentation.maxMaskAge", "is -1: must be in [0, 1000]"},
       {kTum + "Segmentation.maxGrowPx: -1\n", "Segmentation.maxGrowPx", "is -1: must be in [0, 1000]"},
       {kTum + "Segmentation.keyframeHold: 2\n", "Segmentation.keyframeHold", "must be 0 or 1"},
+      {kTum + "Segmentation.provisionalPoints: 2\n", "Segmentation.provisionalPoints", "must be 0 or 1"},
+      {kTum + "Segmentation.provisionalPoints: 1\nSegmentation.keyframeHold: 0\n", "Segmentation.provisionalPoints",
+       "needs keyframe_hold"},
       {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
        "must be at most max_mask_age"},
   };

@@ -51,7 +51,7 @@ class JumpingPerson final : public Segmenter {
   }
 };
 
-RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false) {
+RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false, bool provisional_points = false) {
   Settings settings = seq.settings;
   settings.tracking.init_min_keypoints = 300;
   settings.segmentation.enabled = true;
@@ -62,6 +62,7 @@ RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false) {
   settings.segmentation.max_mask_age = 8;
   settings.segmentation.fresh_mask_cull = !keyframe_hold;  // its path repeats bit for bit too
   settings.segmentation.keyframe_hold = keyframe_hold;
+  settings.segmentation.provisional_points = provisional_points;
   SystemOptions options;
   options.deterministic = true;
   options.segmenter_factory = [keyframe_hold]() -> std::unique_ptr<Segmenter> {
@@ -166,6 +167,34 @@ TEST(AsyncSegmentation, KeyframeHoldMakesTheKeyframesAndChecksThemWithTheirOwnMa
   const nlohmann::json stats = run_result_json(r, {});
   EXPECT_EQ(stats["summary"]["realtime"]["masks"]["keyframes_held"].get<std::size_t>(), held);
   EXPECT_EQ(stats["frames"][0]["keyframe_held"].get<bool>(), r.frames[0].keyframe_held);
+}
+
+TEST(AsyncSegmentation, ProvisionalPointsPassEveryKeyframeAtOnceAndCullInsideTheirOwnMasks) {
+  const RunResult hold = run_async(sequence(), true);
+  const RunResult r = run_async(sequence(), true, true);
+  std::size_t checked = 0, keyframes = 0;
+  int removed = 0;
+  for (const FrameStats& f : r.frames) {
+    EXPECT_FALSE(f.keyframe_deferred) << f.index;
+    keyframes += f.keyframe;
+    removed += f.held_points_removed;
+    if (!f.keyframe_held) continue;
+    ++checked;
+    EXPECT_TRUE(f.keyframe) << f.index;
+    EXPECT_GT(f.build.mask_age, 2) << f.index;
+    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
+  }
+  EXPECT_GE(checked, 2u);
+  EXPECT_GT(removed, 0);  // the jumping square covered provisional points
+  EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
+  EXPECT_GE(static_cast<std::size_t>(r.mapper.keyframes), keyframes);
+  EXPECT_LE(static_cast<std::size_t>(r.mapper.keyframes), keyframes + 1);
+  // Not the keyframe hold's run: its keyframes waited for local mapping, these did not.
+  bool differs = hold.frames.size() != r.frames.size();
+  for (std::size_t i = 0; !differs && i < r.frames.size(); ++i) {
+    differs = hold.frames[i].inliers != r.frames[i].inliers;
+  }
+  EXPECT_TRUE(differs);
 }
 
 }  // namespace

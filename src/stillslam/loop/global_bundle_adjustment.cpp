@@ -19,7 +19,7 @@ GlobalBundleAdjustmentProblem snapshot_global_problem(const Map& map) {
   p.setup = std::shared_ptr<const CameraSetup>(p.keyframes.front(), &p.keyframes.front()->setup());
   const ScalePyramid& pyramid = p.setup->pyramid;
   for (const MapPointPtr& mp : map.map_points()) {
-    if (mp->is_bad()) continue;
+    if (mp->is_bad() || mp->is_provisional()) continue;  // moved with its keyframe below
     if (append_ba_observations(*mp, p.points.size(), kf_index, pyramid, p.ba_observations) == 0) continue;
     p.points.push_back(mp);
     p.ba_points.push_back({mp->id(), mp->position()});

@@ -13,7 +13,7 @@ int fuse(KeyFrame& keyframe, const std::vector<MapPointPtr>& points, float th) {
   const Eigen::Vector3d center = keyframe.camera_center();
   int fused = 0;
   for (const MapPointPtr& mp : points) {
-    if (!mp || mp->is_bad() || mp->is_observed_by(&keyframe)) continue;
+    if (!mp || mp->is_bad() || mp->is_provisional() || mp->is_observed_by(&keyframe)) continue;
     const Eigen::Vector3d p_cam = T_cw * mp->position();
     if (p_cam.z() <= 0) continue;
     const Eigen::Vector2d uv = camera.project(p_cam);
@@ -47,6 +47,7 @@ int fuse(KeyFrame& keyframe, const std::vector<MapPointPtr>& points, float th) {
     if (best < 0 || best_distance > kDescriptorDistanceLow) continue;
     const auto j = static_cast<std::size_t>(best);
     const MapPointPtr existing = keyframe.map_point(j);
+    if (existing && existing->is_provisional()) continue;  // its frame's own mask decides first
     if (existing && !existing->is_bad()) {
       if (existing->num_observations() > mp->num_observations()) {
         mp->replace_with(existing);

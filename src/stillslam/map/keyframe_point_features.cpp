@@ -27,7 +27,7 @@ KeyframePointFeatures gather(const KeyFrame& kf, const FeatureVector& features, 
 KeyframePointFeatures keyframe_point_features(const KeyFrame& kf, const FeatureVector& features) {
   return gather(kf, features, [&](std::uint32_t i) {
     const MapPointPtr& mp = kf.map_point(i);
-    return mp && !mp->is_bad();
+    return mp && !mp->is_bad() && !mp->is_provisional();
   });
 }
 

@@ -386,6 +386,7 @@ struct MapFileAccess {
       for (int k = 0; k < 3; ++k) normal[k] = r.get<double>();
       auto mp = std::make_shared<MapPoint>(id, position, nullptr);
       mp->first_keyframe_id_ = first_keyframe_id;
+      mp->culling_start_keyframe_id_ = first_keyframe_id;
       mp->normal_ = normal;
       std::memcpy(mp->descriptor_.data(), r.get_bytes(32), 32);
       mp->min_distance_ = r.get<double>();

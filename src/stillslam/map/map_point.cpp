@@ -13,6 +13,7 @@ namespace stillslam {
 MapPoint::MapPoint(std::uint64_t id, const Eigen::Vector3d& position_world, KeyFrame* reference)
     : id_(id),
       first_keyframe_id_(reference ? reference->id() : 0),
+      culling_start_keyframe_id_(first_keyframe_id_),
       position_(position_world),
       reference_(reference) {}
 

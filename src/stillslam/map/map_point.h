@@ -85,6 +85,21 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // Recomputes normal and min/max distances from the observations.
   void update_normal_and_depth(const ScalePyramid& pyramid);
 
+  // Made by a keyframe under a carried mask (Segmentation.provisionalPoints,
+  // tracking/provisional_points.h): out of tracking, local and global BA,
+  // fusion and culling until that frame's own mask confirms it or culls it.
+  // Set and read under Map::update_mutex(), like everything here.
+  bool is_provisional() const { return provisional_; }
+  void set_provisional() { provisional_ = true; }
+  // An ordinary point from now on; culling counts its age from keyframe
+  // `next_keyframe_id` (the next one made), not from its first keyframe.
+  void confirm(std::uint64_t next_keyframe_id) {
+    provisional_ = false;
+    culling_start_keyframe_id_ = next_keyframe_id;
+  }
+  // The keyframe id point culling counts a recent point's age from.
+  std::uint64_t culling_start_keyframe_id() const { return culling_start_keyframe_id_; }
+
   bool is_bad() const { return bad_; }
   // Removes the point from all observing keyframes.
   void set_bad();
@@ -97,6 +112,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   friend struct MapFileAccess;  // map_file.cpp saves and restores every field (normal, distances, reference)
   std::uint64_t id_;
   std::uint64_t first_keyframe_id_;
+  std::uint64_t culling_start_keyframe_id_;
   Eigen::Vector3d position_;
   Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
   std::array<std::uint8_t, 32> descriptor_{};
@@ -108,6 +124,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   int outlier_streak_ = 0;  // not saved in map files: a tracking statistic like the two above
   std::optional<std::uint64_t> last_outlier_frame_;  // nor this one
   bool on_dynamic_instance_ = false;  // such points are left out of map files
+  bool provisional_ = false;  // not saved in map files: maps are saved after the last check
   bool bad_ = false;
   std::shared_ptr<MapPoint> replaced_by_;
 };

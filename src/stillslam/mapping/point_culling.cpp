@@ -11,7 +11,12 @@ int cull_recent_points(std::vector<MapPointPtr>& recent, std::uint64_t current_k
   kept.reserve(recent.size());
   for (MapPointPtr& mp : recent) {
     if (mp->is_bad()) continue;
-    const std::uint64_t age = current_keyframe_id - mp->first_keyframe_id();
+    if (mp->is_provisional()) {  // judged once confirmed, its age counted from then
+      kept.push_back(std::move(mp));
+      continue;
+    }
+    const std::uint64_t start = mp->culling_start_keyframe_id();
+    const std::uint64_t age = current_keyframe_id > start ? current_keyframe_id - start : 0;
     if (mp->found_ratio() < options.min_found_ratio ||
         (age >= 2 && mp->num_observations() <= options.min_observations)) {
       mp->set_bad();

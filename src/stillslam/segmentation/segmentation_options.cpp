@@ -21,6 +21,10 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
   at_least("SegmentationOptions.urgent_inliers", urgent_inliers, 0);
   at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
+  if (provisional_points && !keyframe_hold) {
+    throw OptionError("SegmentationOptions.provisional_points", "1",
+                      "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait for their own mask");
+  }
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", option_check::text(modelled_latency),
                       "must be at most max_mask_age (" + option_check::text(max_mask_age) + ")");

@@ -48,6 +48,10 @@ struct SegmentationOptions {
   // from local mapping until its frame's own mask (requested for it) arrives
   // (tracking/keyframe_hold.h).
   bool keyframe_hold = true;
+  // Async: Segmentation.provisionalPoints, with keyframe_hold: such a keyframe
+  // goes to local mapping at once and only its new depth points wait for the
+  // frame's own mask, provisional (tracking/provisional_points.h).
+  bool provisional_points = false;
   // Async with --deterministic: Segmentation.modelledLatency, the mask of
   // frame k is usable from frame k + this on (the segmenter's time in frames),
   // independent of timing. 5: one YOLO thread's ~140 ms at 30 Hz.

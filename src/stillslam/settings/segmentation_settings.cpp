@@ -95,6 +95,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("urgentInliers", options.urgent_inliers, "SegmentationOptions.urgent_inliers", {0, 100000});
   keys.flag("freshMaskCull", options.fresh_mask_cull);
   keys.flag("keyframeHold", options.keyframe_hold);
+  keys.flag("provisionalPoints", options.provisional_points, "SegmentationOptions.provisional_points");
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

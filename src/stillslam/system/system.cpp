@@ -115,7 +115,11 @@ void System::build_pipeline(const Settings& settings) {
                                                   std::move(propagator), settings.segmentation.mask_dilation);
       urgent_inliers_ = settings.segmentation.urgent_inliers;
       if (settings.segmentation.fresh_mask_cull) fresh_mask_check_ = std::make_unique<FreshMaskCheck>();
-      if (settings.segmentation.keyframe_hold) keyframe_hold_ = std::make_unique<KeyframeHold>();
+      if (settings.segmentation.keyframe_hold && settings.segmentation.provisional_points) {
+        provisional_points_ = std::make_unique<ProvisionalPoints>();
+      } else if (settings.segmentation.keyframe_hold) {
+        keyframe_hold_ = std::make_unique<KeyframeHold>();
+      }
       keyframe_mask_age_ = settings.segmentation.keyframe_mask_age;
     } else {
       segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
@@ -201,7 +205,10 @@ void System::build_pipeline(const Settings& settings) {
   tracking.sparse_view = settings.motion.sparse_view;
   tracking.static_evidence.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_pose;
   // Held keyframes are checked later instead of deferred.
-  if (async_masks_ && !keyframe_hold_) tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
+  if (async_masks_ && !keyframe_hold_ && !provisional_points_) {
+    tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
+  }
+  if (provisional_points_) tracking.provisional_mask_age = settings.segmentation.keyframe_mask_age;
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 
@@ -267,6 +274,13 @@ void System::move_stages_to_active_map() {
 }
 
 void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
+  if (provisional_points_ && kf->frame_id() == tracked.id() && tracked.mask_age() > keyframe_mask_age_) {
+    // The tracker made its new points provisional under the same rule.
+    std::vector<cv::Point2f> pixels;
+    pixels.reserve(tracked.size());
+    for (const cv::KeyPoint& k : tracked.keypoints_raw()) pixels.push_back(k.pt);
+    provisional_points_->add(kf, std::move(pixels));
+  }
   if (!keyframe_hold_) {
     mapper_->insert_keyframe(std::move(kf));
     return;
@@ -285,6 +299,14 @@ void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
 }
 
 int System::release_held_keyframes() {
+  if (provisional_points_ && !provisional_points_->empty() && async_masks_->fresh()) {
+    const SegmentationResult& fresh = *async_masks_->fresh();
+    Map& map = tracker_->map();
+    std::lock_guard<std::mutex> lock(map.update_mutex());
+    const ProvisionalCheck checked =
+        provisional_points_->check(fresh.frame_index, {fresh.dynamic_mask}, map.id_counters()->next_keyframe.load());
+    return checked.culled + checked.unlinked;
+  }
   if (!keyframe_hold_ || keyframe_hold_->empty() || !async_masks_->fresh()) return 0;
   const SegmentationResult& fresh = *async_masks_->fresh();
   KeyframeHoldRelease released;
@@ -298,6 +320,11 @@ int System::release_held_keyframes() {
 }
 
 void System::release_all_held_keyframes() {
+  if (provisional_points_ && !provisional_points_->empty()) {
+    Map& map = tracker_->map();
+    std::lock_guard<std::mutex> lock(map.update_mutex());
+    provisional_points_->confirm_all(map.id_counters()->next_keyframe.load());
+  }
   if (!keyframe_hold_) return;
   for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
 }
@@ -418,7 +445,8 @@ FrameStats System::process(const SensorFrame& input) {
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
-  if (keyframe_hold_ && keyframe_hold_->assign(input.index) > 0) {
+  if ((keyframe_hold_ && keyframe_hold_->assign(input.index) > 0) ||
+      (provisional_points_ && provisional_points_->assign(input.index) > 0)) {
     // The held keyframe's frame gets its own mask.
     stats.keyframe_held = true;
     if (async_masks_->segment_last(input.color, input.index)) stats.build.segmentation_request = ScheduleReason::Keyframe;

@@ -50,6 +50,7 @@
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/fresh_mask_check.h"
 #include "stillslam/tracking/keyframe_hold.h"
+#include "stillslam/tracking/provisional_points.h"
 #include "stillslam/tracking/motion_stage.h"
 #include "stillslam/tracking/relocalizer.h"
 #include "stillslam/tracking/tracker.h"
@@ -204,13 +205,17 @@ class System {
   // Segmentation.keyframeHold: keyframes from frames with masks older than
   // keyframe_mask_age_ wait here for their own masks before local mapping.
   std::unique_ptr<KeyframeHold> keyframe_hold_;
+  // Segmentation.provisionalPoints (instead of keyframe_hold_): such keyframes
+  // go to local mapping at once, their new points wait here for the mask.
+  std::unique_ptr<ProvisionalPoints> provisional_points_;
   int keyframe_mask_age_ = 0;
   // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes
   // (`tracked`: the frame being tracked, LocalMappingLink::insert_keyframe).
   void on_new_keyframe(KeyFramePtr kf, const Frame& tracked);
-  // Releases the held keyframes the newest segmentation result allows; returns the points removed.
+  // Releases the held keyframes (or checks the provisional points) the newest
+  // segmentation result allows; returns the points removed.
   int release_held_keyframes();
-  // Every held keyframe, unchecked (a new map, a merge, shutdown).
+  // Every held keyframe, unchecked, and every provisional point confirmed (a new map, a merge, shutdown).
   void release_all_held_keyframes();
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks

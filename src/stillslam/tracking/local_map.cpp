@@ -52,7 +52,7 @@ LocalMap build_local_map(const Frame& frame, KeyFrame* fallback, std::size_t max
   std::unordered_set<const MapPoint*> seen;
   for (KeyFrame* kf : local.keyframes) {
     for (const MapPointPtr& mp : kf->map_points()) {
-      if (mp && !mp->is_bad() && seen.insert(mp.get()).second) local.points.push_back(mp);
+      if (mp && !mp->is_bad() && !mp->is_provisional() && seen.insert(mp.get()).second) local.points.push_back(mp);
     }
   }
   return local;

@@ -22,7 +22,7 @@ std::vector<MapPointPtr> local_map_points(const KeyFrame& kf) {
   std::vector<MapPointPtr> out;
   auto add_points = [&](const KeyFrame& k) {
     for (const MapPointPtr& mp : k.map_points()) {
-      if (mp && !mp->is_bad() && seen.insert(mp.get()).second) out.push_back(mp);
+      if (mp && !mp->is_bad() && !mp->is_provisional() && seen.insert(mp.get()).second) out.push_back(mp);
     }
   };
   add_points(kf);

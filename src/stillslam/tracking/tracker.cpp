@@ -539,6 +539,8 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
   // In the start's window the previous tracked frame checks them however far back it lies.
   const bool check = last_frame_.has_pose() &&
                      ((options_.new_point_check.enabled && last_frame_.id() + 1 == frame.id()) || start_window);
+  // Under a carried mask too old, the new points wait for the frame's own mask.
+  const bool provisional = options_.provisional_mask_age >= 0 && frame.mask_age() > options_.provisional_mask_age;
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i) && !failed_match[i]) {
       const Eigen::Vector3d p = *kf->unproject(i);
@@ -548,7 +550,11 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
       kf->set_map_point(i, mp);
       mp->compute_distinctive_descriptor();
       mp->update_normal_and_depth(frame.setup().pyramid);
-      frame.set_map_point(i, mp);
+      if (provisional) {
+        mp->set_provisional();  // the next frame's motion model sees a temporary point there instead
+      } else {
+        frame.set_map_point(i, mp);
+      }
     }
     ++n;
     if (z > close_depth && n > options_.new_keyframe_points) break;

@@ -10,6 +10,7 @@ void TrackerOptions::check() const {
   using namespace option_check;
   at_least("TrackerOptions.init_min_keypoints", init_min_keypoints, 1);
   at_least("TrackerOptions.max_keyframe_mask_age", max_keyframe_mask_age, -1);
+  at_least("TrackerOptions.provisional_mask_age", provisional_mask_age, -1);
   initial_view.check();
   sparse_view.check();
   at_least("TrackerOptions.init_confirm_frames", init_confirm_frames, 0);

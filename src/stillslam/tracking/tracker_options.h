@@ -76,6 +76,13 @@ struct TrackerOptions {
   // Segmentation.keyframeMaskAge in async mode); the keyframe is deferred to
   // a later frame. -1: any age.
   int max_keyframe_mask_age = -1;
+  // New depth points of a keyframe whose frame's dynamic mask is older than
+  // this many processed frames are provisional (MapPoint::is_provisional; set
+  // by System from Segmentation.keyframeMaskAge with
+  // Segmentation.provisionalPoints): the frame does not track with them and
+  // tracking/provisional_points.h confirms or culls them when the frame's own
+  // mask comes. -1: never.
+  int provisional_mask_age = -1;
   // The crowd fallback when masks hide most of the view (tracking/sparse_view.h,
   // Motion.sparseView*).
   SparseViewOptions sparse_view;

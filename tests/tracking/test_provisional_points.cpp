@@ -1,0 +1,167 @@
+// ProvisionalPoints (tracking/provisional_points.h) and MapPoint::is_provisional:
+// the new points of a keyframe made under a carried mask stay out of local BA,
+// tracking's local map, fusion and culling until that frame's own mask comes;
+// then those inside it are culled and the rest are ordinary points.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "map/synthetic_scene.h"
+#include "stillslam/map/fuse.h"
+#include "stillslam/map/map.h"
+#include "stillslam/mapping/local_bundle_adjustment.h"
+#include "stillslam/mapping/point_culling.h"
+#include "stillslam/tracking/local_map.h"
+#include "stillslam/tracking/provisional_points.h"
+
+namespace stillslam {
+namespace {
+
+std::vector<cv::Point2f> pixels_of(const Frame& frame) {
+  std::vector<cv::Point2f> out;
+  for (const cv::KeyPoint& k : frame.keypoints_raw()) out.push_back(k.pt);
+  return out;
+}
+
+std::unordered_set<const MapPoint*> in_local_ba(KeyFrame& kf) {
+  std::unordered_set<const MapPoint*> out;
+  for (const MapPointPtr& mp : gather_local_window(kf).points) out.insert(mp.get());
+  return out;
+}
+
+// Frame 0's keyframes made a point at every keypoint; the keyframe of input
+// frame 7 (carried mask) matched them at even keypoints and made provisional
+// points at odd ones. A person covers the left quarter of the image.
+struct ProvisionalScene {
+  test::SyntheticScene scene{400};
+  Map map;
+  Frame f0, f1;
+  KeyFramePtr kf0, kf0b, kf0c, kf;
+  std::vector<MapPointPtr> old_points, new_points;
+  cv::Mat1b mask;
+  std::vector<bool> inside;
+
+  ProvisionalScene() {
+    f0 = scene.make_frame(0, test::pose_at(0));
+    f0.set_pose(test::pose_at(0));
+    kf0 = map.create_keyframe(f0);
+    kf0b = map.create_keyframe(f0);
+    kf0c = map.create_keyframe(f0);
+    for (std::size_t i = 0; i < f0.size(); ++i) {
+      MapPointPtr mp = map.create_map_point(*f0.unproject(i), kf0.get());
+      for (const KeyFramePtr& k : {kf0, kf0b, kf0c}) {
+        mp->add_observation(k.get(), i);
+        k->set_map_point(i, mp);
+      }
+      old_points.push_back(mp);
+    }
+    f1 = scene.make_frame(1, test::pose_at(0));
+    f1.set_pose(test::pose_at(0));
+    for (std::size_t i = 0; i < f1.size(); i += 2) f1.set_map_point(i, old_points[i]);
+    kf = map.create_keyframe(f1);
+    new_points.resize(f1.size());
+    for (std::size_t i = 0; i < f1.size(); ++i) {
+      if (kf->map_point(i)) old_points[i]->add_observation(kf.get(), i);
+      if (i % 2 == 0) continue;
+      new_points[i] = map.create_map_point(*f1.unproject(i), kf.get());
+      new_points[i]->add_observation(kf.get(), i);
+      new_points[i]->compute_distinctive_descriptor();
+      new_points[i]->update_normal_and_depth(f1.setup().pyramid);
+      new_points[i]->set_provisional();
+      kf->set_map_point(i, new_points[i]);
+    }
+    for (const KeyFramePtr& k : {kf0, kf0b, kf0c, kf}) k->update_connections();
+    const cv::Size size(f1.setup().camera.width(), f1.setup().camera.height());
+    mask = cv::Mat1b::zeros(size);
+    mask(cv::Rect(0, 0, size.width / 4, size.height)).setTo(255);
+    for (const cv::KeyPoint& k : f1.keypoints_raw()) {
+      inside.push_back(mask(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y))) != 0);
+    }
+  }
+  int count(bool odd, bool in) const {
+    int n = 0;
+    for (std::size_t i = 0; i < inside.size(); ++i) n += (i % 2 == 1) == odd && inside[i] == in;
+    return n;
+  }
+};
+
+TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
+  ProvisionalScene s;
+  const int new_in = s.count(true, true), new_out = s.count(true, false), old_in = s.count(false, true);
+  ASSERT_GT(new_in, 10);
+  ASSERT_GT(new_out, 10);
+  ASSERT_GT(old_in, 10);
+
+  // While provisional: not in local BA, not in tracking's local map, not fused, not culled.
+  std::unordered_set<const MapPoint*> ba = in_local_ba(*s.kf);
+  const LocalMap local = build_local_map(s.f0, s.kf.get(), 10);
+  for (std::size_t i = 1; i < s.new_points.size(); i += 2) {
+    EXPECT_FALSE(ba.count(s.new_points[i].get())) << i;
+    EXPECT_EQ(std::count(local.points.begin(), local.points.end(), s.new_points[i]), 0) << i;
+  }
+  EXPECT_EQ(ba.size(), s.old_points.size());  // the old points are all there
+  const KeyFramePtr empty = s.map.create_keyframe(s.f0);  // no points yet: fusion fills it
+  std::vector<MapPointPtr> provisional;
+  for (const MapPointPtr& mp : s.new_points) {
+    if (mp) provisional.push_back(mp);
+  }
+  EXPECT_EQ(fuse(*empty, provisional), 0);
+  EXPECT_GT(fuse(*empty, s.old_points), 0);  // the same projection fuses ordinary points
+  std::vector<MapPointPtr> recent = provisional;
+  EXPECT_EQ(cull_recent_points(recent, s.kf->id() + 10, {}), 0);
+  EXPECT_EQ(recent.size(), provisional.size());
+
+  ProvisionalPoints pending;
+  pending.add(s.kf, pixels_of(s.f1));
+  EXPECT_EQ(pending.check(7, {s.mask}, 50).culled, 0);  // its input frame not known yet
+  EXPECT_EQ(pending.assign(7), 1);
+  EXPECT_EQ(pending.assign(8), 0);  // assigned once
+  ProvisionalCheck c = pending.check(6, {s.mask}, 50);  // an older frame's mask: nothing happens
+  EXPECT_EQ(c.culled + c.confirmed + c.unlinked, 0);
+  EXPECT_FALSE(pending.empty());
+  c = pending.check(7, {s.mask}, 50);
+  EXPECT_EQ(c.culled, new_in);
+  EXPECT_EQ(c.confirmed, new_out);
+  EXPECT_EQ(c.unlinked, old_in);
+  EXPECT_EQ(c.unchecked, 0);
+  EXPECT_TRUE(pending.empty());
+
+  // After the mask: inside culled (never in BA), outside ordinary and in the next local BA.
+  ba = in_local_ba(*s.kf);
+  for (std::size_t i = 1; i < s.new_points.size(); i += 2) {
+    const MapPointPtr& mp = s.new_points[i];
+    EXPECT_FALSE(mp->is_provisional()) << i;
+    EXPECT_EQ(mp->is_bad(), bool(s.inside[i])) << i;
+    EXPECT_EQ(ba.count(mp.get()) == 1, !s.inside[i]) << i;
+  }
+  for (std::size_t i = 0; i < s.old_points.size(); i += 2) {
+    EXPECT_EQ(s.old_points[i]->is_observed_by(s.kf.get()), !s.inside[i]) << i;
+  }
+  // Culling counts a confirmed point's age from its confirmation (next keyframe id 50).
+  recent = provisional;
+  EXPECT_EQ(cull_recent_points(recent, 51, {}), 0);
+  EXPECT_EQ(cull_recent_points(recent, 52, {}), new_out);  // seen by one keyframe only
+}
+
+TEST(ProvisionalPoints, ANewerMaskOrTheEndConfirmsUnchecked) {
+  ProvisionalScene s;
+  ProvisionalPoints pending;
+  pending.add(s.kf, pixels_of(s.f1));
+  EXPECT_EQ(pending.assign(5), 1);
+  pending.add(s.kf, pixels_of(s.f1));
+  EXPECT_EQ(pending.assign(9), 1);
+  // Frame 5's own mask never came (a threaded stage skipped it); frame 8's did.
+  const ProvisionalCheck c = pending.check(8, {s.mask}, 20);
+  EXPECT_EQ(c.unchecked, 1);
+  EXPECT_EQ(c.culled, 0);
+  EXPECT_EQ(c.unlinked, 0);
+  EXPECT_EQ(c.confirmed, s.count(true, true) + s.count(true, false));
+  EXPECT_EQ(pending.size(), 1u);
+  for (std::size_t i = 1; i < s.new_points.size(); i += 2) EXPECT_FALSE(s.new_points[i]->is_provisional());
+  EXPECT_EQ(pending.confirm_all(20).unchecked, 1);
+  EXPECT_TRUE(pending.empty());
+}
+
+}  // namespace
+}  // namespace stillslam
