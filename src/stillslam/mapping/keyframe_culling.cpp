@@ -9,7 +9,7 @@ double keyframe_redundancy(const KeyFrame& kf, const KeyFrameCullingOptions& opt
   const double close_depth = kf.setup().close_depth;
   for (std::size_t i = 0; i < kf.size(); ++i) {
     const MapPointPtr& mp = kf.map_point(i);
-    if (!mp || mp->is_bad() || mp->is_provisional()) continue;
+    if (!mp || mp->is_bad()) continue;  // a provisional point counts: seen by this keyframe alone
     const float z = kf.depth(i);
     if (z < 0 || z > close_depth) continue;
     ++points;

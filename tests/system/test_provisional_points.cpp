@@ -10,6 +10,7 @@
 #include "map/synthetic_scene.h"
 #include "stillslam/map/fuse.h"
 #include "stillslam/map/map.h"
+#include "stillslam/mapping/keyframe_culling.h"
 #include "stillslam/mapping/local_bundle_adjustment.h"
 #include "stillslam/mapping/point_culling.h"
 #include "stillslam/tracking/local_map.h"
@@ -111,6 +112,16 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
   std::vector<MapPointPtr> recent = provisional;
   EXPECT_EQ(cull_recent_points(recent, s.kf->id() + 10, {}), 0);
   EXPECT_EQ(recent.size(), provisional.size());
+  // Its keyframe is not redundant for them: they are seen by it alone (its
+  // matches to frame 0's points, seen by three other keyframes, are).
+  int close = 0, matched = 0;
+  for (std::size_t i = 0; i < s.kf->size(); ++i) {
+    if (s.kf->depth(i) < 0 || s.kf->depth(i) > s.kf->setup().close_depth) continue;
+    ++close;
+    matched += i % 2 == 0;
+  }
+  ASSERT_GT(close, 100);
+  EXPECT_NEAR(keyframe_redundancy(*s.kf), static_cast<double>(matched) / close, 1e-9);
 
   ProvisionalPoints pending;
   pending.add(s.kf, pixels_of(s.f1));
