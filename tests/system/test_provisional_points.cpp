@@ -136,6 +136,8 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
   EXPECT_EQ(c.confirmed, new_out);
   EXPECT_EQ(c.unlinked, old_in);
   EXPECT_EQ(c.unchecked, 0);
+  ASSERT_EQ(c.settled.size(), 1u);  // to be fused by the caller
+  EXPECT_EQ(c.settled[0], s.kf);
   EXPECT_TRUE(pending.empty());
 
   // After the mask: inside culled (never in BA), outside ordinary and in the next local BA.

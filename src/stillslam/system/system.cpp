@@ -9,6 +9,7 @@
 #include "stillslam/core/shipped_files.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
+#include "stillslam/mapping/neighbour_fusion.h"
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
@@ -117,6 +118,7 @@ void System::build_pipeline(const Settings& settings) {
       if (settings.segmentation.fresh_mask_cull) fresh_mask_check_ = std::make_unique<FreshMaskCheck>();
       if (settings.segmentation.keyframe_hold && settings.segmentation.provisional_points) {
         provisional_points_ = std::make_unique<ProvisionalPoints>();
+        fusion_options_ = settings.local_mapping.fusion;
       } else if (settings.segmentation.keyframe_hold) {
         keyframe_hold_ = std::make_unique<KeyframeHold>();
       }
@@ -305,6 +307,9 @@ int System::release_held_keyframes() {
     std::lock_guard<std::mutex> lock(map.update_mutex());
     const ProvisionalCheck checked =
         provisional_points_->check(fresh.frame_index, {fresh.dynamic_mask}, map.id_counters()->next_keyframe.load());
+    // What local mapping did for the keyframe's other points: duplicates fused,
+    // observations added (tracking's keyframe decision counts them).
+    for (const KeyFramePtr& kf : checked.settled) fuse_with_neighbours(*kf, fusion_options_);
     return checked.culled + checked.unlinked;
   }
   if (!keyframe_hold_ || keyframe_hold_->empty() || !async_masks_->fresh()) return 0;
@@ -323,7 +328,8 @@ void System::release_all_held_keyframes() {
   if (provisional_points_ && !provisional_points_->empty()) {
     Map& map = tracker_->map();
     std::lock_guard<std::mutex> lock(map.update_mutex());
-    provisional_points_->confirm_all(map.id_counters()->next_keyframe.load());
+    const ProvisionalCheck confirmed = provisional_points_->confirm_all(map.id_counters()->next_keyframe.load());
+    for (const KeyFramePtr& kf : confirmed.settled) fuse_with_neighbours(*kf, fusion_options_);
   }
   if (!keyframe_hold_) return;
   for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));

@@ -9,6 +9,7 @@ namespace {
 void settle(KeyFrame& kf, const std::vector<cv::Point2f>* pixels, const std::vector<cv::Mat1b>& instances,
             std::uint64_t next_keyframe_id, ProvisionalCheck& out) {
   if (kf.is_bad()) return;
+  out.settled.push_back(kf.shared_from_this());
   for (std::size_t i = 0; i < kf.size(); ++i) {
     const MapPointPtr mp = kf.map_point(i);
     if (!mp || mp->is_bad()) continue;

@@ -25,6 +25,9 @@ struct ProvisionalCheck {
   int confirmed = 0;  // provisional points outside it (or never checked)
   int unlinked = 0;   // matches to older points inside the mask
   int unchecked = 0;  // keyframes whose own mask never came (a newer one did): confirmed as they are
+  // The keyframes whose points were settled (not culled keyframes): their
+  // confirmed points were never fused, the caller fuses them now.
+  std::vector<KeyFramePtr> settled;
 };
 
 class ProvisionalPoints {
