@@ -131,6 +131,10 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
   ProvisionalCheck c = pending.check(6, {s.mask}, 50);  // an older frame's mask: nothing happens
   EXPECT_EQ(c.culled + c.confirmed + c.unlinked, 0);
   EXPECT_FALSE(pending.empty());
+  // Local BA moved the keyframe 5 cm meanwhile (not its provisional points).
+  Eigen::Isometry3d moved = s.kf->T_cam_world();
+  moved.translation().x() += 0.05;
+  s.kf->set_pose(moved);
   c = pending.check(7, {s.mask}, 50);
   EXPECT_EQ(c.culled, new_in);
   EXPECT_EQ(c.confirmed, new_out);
@@ -147,6 +151,10 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
     EXPECT_FALSE(mp->is_provisional()) << i;
     EXPECT_EQ(mp->is_bad(), bool(s.inside[i])) << i;
     EXPECT_EQ(ba.count(mp.get()) == 1, !s.inside[i]) << i;
+    if (!s.inside[i]) {  // placed again from the keyframe's pose now
+      EXPECT_LT((mp->position() - *s.kf->unproject(i)).norm(), 1e-9) << i;
+      EXPECT_GT((mp->position() - *s.f1.unproject(i)).norm(), 0.04) << i;
+    }
   }
   for (std::size_t i = 0; i < s.old_points.size(); i += 2) {
     EXPECT_EQ(s.old_points[i]->is_observed_by(s.kf.get()), !s.inside[i]) << i;

@@ -1,5 +1,7 @@
 #include "stillslam/tracking/provisional_points.h"
 
+#include <optional>
+
 #include "stillslam/tracking/fresh_mask_check.h"
 
 namespace stillslam {
@@ -19,6 +21,10 @@ void settle(KeyFrame& kf, const std::vector<cv::Point2f>* pixels, const std::vec
         mp->set_bad();
         ++out.culled;
       } else {
+        // Placed again from the keyframe's depth and its pose now (local BA
+        // moved the keyframe, not the point, while it waited).
+        if (const std::optional<Eigen::Vector3d> p = kf.unproject(i)) mp->set_position(*p);
+        mp->update_normal_and_depth(kf.setup().pyramid);
         mp->confirm(next_keyframe_id);
         ++out.confirmed;
       }
