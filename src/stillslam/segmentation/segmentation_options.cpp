@@ -23,7 +23,8 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
   if (provisional_points && !keyframe_hold) {
     throw OptionError("SegmentationOptions.provisional_points", "1",
-                      "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait for their own mask");
+                      "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait "
+                      "for their own mask");
   }
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", option_check::text(modelled_latency),

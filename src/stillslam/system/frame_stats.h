@@ -21,8 +21,11 @@ struct FrameStats {
   bool keyframe = false;
   bool keyframe_deferred = false;  // due, but the mask was older than Segmentation.keyframeMaskAge
   MotionPriorFrame motion_prior;  // TrackingResult::motion_prior
-  bool keyframe_held = false;  // made with a carried mask, held until its own mask comes (keyframe_hold.h)
-  int held_points_removed = 0;  // points culled or unlinked as held keyframes were released after this frame
+  // Made with a carried mask, held until its own mask comes (keyframe_hold.h), or with
+  // Segmentation.provisionalPoints its new points provisional until then (provisional_points.h).
+  bool keyframe_held = false;
+  // Points culled or unlinked as held keyframes were released (or provisional points checked) after this frame.
+  int held_points_removed = 0;
   int fresh_mask_culled = 0;  // map points culled when an earlier frame's own mask arrived (fresh_mask_check.h)
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)
   double mapping_ms = 0;   // synchronous local mapping after this frame (deterministic mode)
