@@ -63,4 +63,30 @@ TEST(FeatureGrid, CellOfAndExactBoundaries) {
   EXPECT_EQ(grid.features_in_area(15.f, 10.f, 5.01f).size(), 2u);
 }
 
+TEST(FeatureGrid, QueriesPastTheBoundsCrowdedCellsAndNoKeypoints) {
+  // 50 keypoints in one cell (10 x 10 pixels), by index 0..49, levels 0..4.
+  std::vector<cv::KeyPoint> kps;
+  for (int i = 0; i < 50; ++i) {
+    kps.emplace_back(cv::Point2f(100.f + 0.1f * static_cast<float>(i), 200.f + 0.05f * static_cast<float>(i)), 31.f,
+                     0.f, 0.f, i % 5);
+  }
+  const FeatureGrid grid(kps, cv::Rect2f(0, 0, 640, 480));
+  const auto all = grid.features_in_area(102.f, 201.f, 5.f);
+  ASSERT_EQ(all.size(), 50u);
+  for (std::size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i], i);  // ascending indices
+  const auto level2 = grid.features_in_area(102.f, 201.f, 5.f, 2, 2);
+  ASSERT_EQ(level2.size(), 10u);
+  EXPECT_EQ(level2.front(), 2u);
+  EXPECT_EQ(level2.back(), 47u);
+  // Windows wholly left of, right of, above or below the bounds.
+  EXPECT_TRUE(grid.features_in_area(-300.f, 200.f, 50.f).empty());
+  EXPECT_TRUE(grid.features_in_area(1000.f, 200.f, 50.f).empty());
+  EXPECT_TRUE(grid.features_in_area(100.f, -300.f, 50.f).empty());
+  EXPECT_TRUE(grid.features_in_area(100.f, 900.f, 50.f).empty());
+  // A window covering the whole image returns every keypoint once.
+  EXPECT_EQ(grid.features_in_area(0.f, 0.f, 1e6f).size(), 50u);
+  const FeatureGrid empty(std::vector<cv::KeyPoint>{}, cv::Rect2f(0, 0, 640, 480));
+  EXPECT_TRUE(empty.features_in_area(320.f, 240.f, 1000.f).empty());
+}
+
 }  // namespace stillslam

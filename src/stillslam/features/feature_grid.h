@@ -1,7 +1,11 @@
 #pragma once
 // Uniform grid over the (undistorted) image bounds for fast "keypoints near
-// (x, y)" queries, as used by guided matching in tracking.
+// (x, y)" queries, as used by guided matching in tracking, fusion and
+// triangulation. The cells are stored flat, row-major, each cell's keypoints
+// (position, octave, index) contiguous, so one query reads one contiguous run
+// per grid row instead of chasing a vector per cell and the keypoint array.
 #include <cstddef>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -26,11 +30,18 @@ class FeatureGrid {
   const cv::Rect2f& bounds() const { return bounds_; }
 
  private:
-  std::vector<cv::KeyPoint> keypoints_;
+  struct Entry {
+    float x, y;
+    int octave;
+    std::uint32_t index;
+  };
   cv::Rect2f bounds_;
   int cols_, rows_;
   float inv_cell_w_, inv_cell_h_;
-  std::vector<std::vector<std::size_t>> cells_;  // row-major
+  // Cell k (row-major) holds entries_[cell_start_[k] .. cell_start_[k + 1]),
+  // by ascending keypoint index.
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<Entry> entries_;
 };
 
 }  // namespace stillslam

@@ -27,9 +27,11 @@ int fuse(KeyFrame& keyframe, const std::vector<MapPointPtr>& points, float th) {
     const float radius = th * setup.pyramid.scale[static_cast<std::size_t>(level)];
     int best_distance = 256;
     std::ptrdiff_t best = -1;
-    for (std::size_t j : keyframe.features_in_area(static_cast<float>(uv.x()), static_cast<float>(uv.y()), radius)) {
+    // Only keypoints at the predicted level or one below can match; the grid
+    // filters by level, so most windows return nothing and allocate nothing.
+    for (std::size_t j : keyframe.features_in_area(static_cast<float>(uv.x()), static_cast<float>(uv.y()), radius,
+                                                   level - 1, level)) {
       const cv::KeyPoint& kp = keyframe.keypoint(j);
-      if (kp.octave < level - 1 || kp.octave > level) continue;
       const double ex = uv.x() - kp.pt.x, ey = uv.y() - kp.pt.y;
       const double inv_sigma2 = setup.pyramid.inv_sigma2[static_cast<std::size_t>(kp.octave)];
       if (keyframe.u_right(j) >= 0) {

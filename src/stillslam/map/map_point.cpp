@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <vector>
 
 #include "stillslam/features/descriptor.h"
 #include "stillslam/features/scale_pyramid.h"
@@ -47,14 +49,18 @@ void MapPoint::erase_observation(KeyFrame* kf) {
 }
 
 void MapPoint::compute_distinctive_descriptor() {
-  std::vector<const std::uint8_t*> descriptors;
-  descriptors.reserve(observations_.size());
+  // Per-thread buffers: mapping calls this for every point of every new
+  // keyframe, and fresh vectors each time were a measurable share of it.
+  thread_local std::vector<const std::uint8_t*> descriptors;
+  thread_local std::vector<int> distances;
+  thread_local std::vector<int> row;
+  descriptors.clear();
   for (const auto& [kf, idx] : observations_) {
     if (!kf->is_bad()) descriptors.push_back(kf->descriptor(idx));
   }
   if (descriptors.empty()) return;
   const std::size_t n = descriptors.size();
-  std::vector<int> distances(n * n, 0);
+  distances.assign(n * n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const int d = descriptor_distance(descriptors[i], descriptors[j]);
@@ -64,7 +70,7 @@ void MapPoint::compute_distinctive_descriptor() {
   }
   int best_median = std::numeric_limits<int>::max();
   std::size_t best = 0;
-  std::vector<int> row(n);
+  row.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::copy(distances.begin() + static_cast<std::ptrdiff_t>(i * n),
               distances.begin() + static_cast<std::ptrdiff_t>((i + 1) * n), row.begin());

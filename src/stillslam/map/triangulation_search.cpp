@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "stillslam/features/descriptor.h"
 #include "stillslam/features/descriptor_matcher.h"
@@ -41,7 +40,9 @@ std::vector<std::pair<std::size_t, std::size_t>> search_for_triangulation(
   std::vector<char> taken2(kf2.size(), 0);
   std::vector<std::pair<std::size_t, std::size_t>> matches;
   std::vector<float> angle_differences;
-  std::set<std::size_t> candidates;
+  // Grid hits of the samples along the epipolar segment, sorted and unique
+  // (a reused buffer: the windows of neighbouring samples overlap).
+  std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < kf1.size(); ++i) {
     if (kf1.map_point(i)) continue;
     const cv::KeyPoint& kp1 = kf1.keypoint(i);
@@ -70,9 +71,11 @@ std::vector<std::pair<std::size_t, std::size_t>> search_for_triangulation(
       if (!camera.in_image(p)) continue;
       for (std::size_t j : kf2.features_in_area(static_cast<float>(p.x()), static_cast<float>(p.y()), radius,
                                                 std::max(kp1.octave - 2, 0), kp1.octave + 2)) {
-        candidates.insert(j);
+        candidates.push_back(j);
       }
     }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     int best_distance = kDescriptorDistanceLow + 1;
     std::ptrdiff_t best = -1;
     for (std::size_t j : candidates) {
