@@ -18,8 +18,8 @@
 // Without masks (both frames unmasked) the same check guards the start
 // against movers nothing marks: the first frame is rejected only when the
 // camera motion does not hold most of the matches (max_moving_share_unmasked);
-// the tracker then keeps only keypoints that more confirming frames matched
-// as inliers (`confirmed`) than found moving (`keep` false; start_votes.h).
+// the tracker then keeps only keypoints that some confirming frame matched
+// as inliers (`confirmed`) and none found moving (`keep`).
 #include <Eigen/Geometry>
 
 #include <string>

@@ -52,7 +52,7 @@ void Tracker::start_new_map(Map& map) {
   last_lost_frame_id_ = 0;
   was_lost_ = false;
   start_candidate_.reset();
-  start_votes_.reset(0);
+  start_keep_.clear();
   last_frame_left_out_.clear();
   start_confirmations_ = 0;
   start_frames_rejected_ = 0;
@@ -212,10 +212,15 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   if (start_candidate_) {
     const InitialViewCheck check = check_initial_view(*start_candidate_, frame, options_.initial_view);
     if (check.accepted) {
-      start_votes_.add(check);
+      for (std::size_t i = 0; i < start_keep_.size(); ++i) {
+        start_keep_[i] = start_keep_[i] && check.keep[i];
+        start_confirmed_[i] = start_confirmed_[i] || check.confirmed[i];
+      }
       if (++start_confirmations_ >= confirm_frames) {
         Frame first = std::move(*start_candidate_);
-        const std::vector<bool> keep = start_votes_.keep(unmasked);
+        // Without masks a point nothing confirmed may be a mover no frame matched.
+        std::vector<bool> keep = std::move(start_keep_);
+        for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
         start_candidate_.reset();
         initialize(first, frame, keep);
         if (unmasked && options_.init_unmasked_trust_frames > 0) {
@@ -244,7 +249,8 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
     return Start::Waiting;
   }
   start_candidate_ = frame;
-  start_votes_.reset(frame.size());
+  start_keep_.assign(frame.size(), true);
+  start_confirmed_.assign(frame.size(), false);
   start_confirmations_ = 0;
   return Start::Waiting;
 }

@@ -15,7 +15,6 @@
 #include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/start_evidence.h"
-#include "stillslam/tracking/start_votes.h"
 #include "stillslam/tracking/tracker_options.h"
 #include "stillslam/tracking/tracking_state.h"
 
@@ -124,7 +123,8 @@ class Tracker {
   // The first keyframe awaiting confirmation by the next frames, with the
   // keypoints that may become map points.
   std::optional<Frame> start_candidate_;
-  StartVotes start_votes_;  // what the checks so far say of its keypoints
+  std::vector<bool> start_keep_;
+  std::vector<bool> start_confirmed_;  // matched as an inlier by some confirming frame
   // Keypoints of last_frame_ that give no visual-odometry point (the map's
   // first frame: those its start check left out).
   std::vector<bool> last_frame_left_out_;
