@@ -24,8 +24,8 @@ struct TrackerOptions {
   // the points that move (or that no frame confirms) out of the first
   // keyframe: a view full of walking people would otherwise anchor the map
   // on them. 0 (the default): the map starts from the first frame with
-  // depth. 3 took n3 from 0.47/0.54 m to 0.16/0.088 m (stereo/RGB-D) but
-  // wx RGB-D from 5 mm to 0.23 m (bench/README.md, issue #20 session 10).
+  // depth. 3 takes n3 from 0.44/0.52 m to 0.015/0.099 m (stereo/RGB-D) but
+  // costs 1.09x on twins without people (bench/README.md, #20 session 12).
   int init_unmasked_confirm_frames = 0;
   // After such a start, for this many frames the first keyframe's points
   // count as static evidence, and no visual-odometry or keyframe depth point
