@@ -140,23 +140,37 @@ TEST(AsyncSegmentation, DeterministicRunsRepeatBitForBit) {
   }
 }
 
+// Counts a run's keyframes, those checked against their own frame's mask
+// (held or with provisional points) and the points that check removed; every
+// checked keyframe's frame had an old mask and asked for a segmentation.
+struct CheckedKeyframes {
+  std::size_t checked = 0, keyframes = 0;
+  int removed = 0;
+};
+
+CheckedKeyframes count_checked_keyframes(const RunResult& r) {
+  CheckedKeyframes c;
+  for (const FrameStats& f : r.frames) {
+    EXPECT_FALSE(f.keyframe_deferred) << f.index;
+    c.keyframes += f.keyframe;
+    c.removed += f.held_points_removed;
+    if (!f.keyframe_held) continue;
+    ++c.checked;
+    EXPECT_TRUE(f.keyframe) << f.index;
+    EXPECT_GT(f.build.mask_age, 2) << f.index;
+    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
+  }
+  return c;
+}
+
 // Keyframes due on frames with masks older than keyframeMaskAge (2) are made
 // and held instead of deferred; each such frame goes to the segmenter, and
 // when its own mask comes the held keyframe's points inside it go.
 TEST(AsyncSegmentation, KeyframeHoldMakesTheKeyframesAndChecksThemWithTheirOwnMasks) {
   const RunResult r = run_async(sequence(), true);
-  std::size_t held = 0, keyframes = 0;
-  int removed = 0;
-  for (const FrameStats& f : r.frames) {
-    EXPECT_FALSE(f.keyframe_deferred) << f.index;
-    keyframes += f.keyframe;
-    removed += f.held_points_removed;
-    if (!f.keyframe_held) continue;
-    ++held;
-    EXPECT_TRUE(f.keyframe) << f.index;
-    EXPECT_GT(f.build.mask_age, 2) << f.index;
-    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
-  }
+  const CheckedKeyframes c = count_checked_keyframes(r);
+  const std::size_t held = c.checked, keyframes = c.keyframes;
+  const int removed = c.removed;
   EXPECT_GE(held, 2u);
   EXPECT_GT(removed, 0);  // the jumping square covered keypoints of held keyframes
   EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
@@ -172,18 +186,9 @@ TEST(AsyncSegmentation, KeyframeHoldMakesTheKeyframesAndChecksThemWithTheirOwnMa
 TEST(AsyncSegmentation, ProvisionalPointsPassEveryKeyframeAtOnceAndCullInsideTheirOwnMasks) {
   const RunResult hold = run_async(sequence(), true);
   const RunResult r = run_async(sequence(), true, true);
-  std::size_t checked = 0, keyframes = 0;
-  int removed = 0;
-  for (const FrameStats& f : r.frames) {
-    EXPECT_FALSE(f.keyframe_deferred) << f.index;
-    keyframes += f.keyframe;
-    removed += f.held_points_removed;
-    if (!f.keyframe_held) continue;
-    ++checked;
-    EXPECT_TRUE(f.keyframe) << f.index;
-    EXPECT_GT(f.build.mask_age, 2) << f.index;
-    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
-  }
+  const CheckedKeyframes c = count_checked_keyframes(r);
+  const std::size_t checked = c.checked, keyframes = c.keyframes;
+  const int removed = c.removed;
   EXPECT_GE(checked, 2u);
   EXPECT_GT(removed, 0);  // the jumping square covered provisional points
   EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
