@@ -11,19 +11,15 @@
 #include "stillslam/map/fuse.h"
 #include "stillslam/map/map.h"
 #include "stillslam/mapping/keyframe_culling.h"
+#include "stillslam/mapping/local_mapper.h"
 #include "stillslam/mapping/local_bundle_adjustment.h"
 #include "stillslam/mapping/point_culling.h"
 #include "stillslam/tracking/local_map.h"
+#include "stillslam/tracking/keypoint_pixels.h"
 #include "stillslam/tracking/provisional_points.h"
 
 namespace stillslam {
 namespace {
-
-std::vector<cv::Point2f> pixels_of(const Frame& frame) {
-  std::vector<cv::Point2f> out;
-  for (const cv::KeyPoint& k : frame.keypoints_raw()) out.push_back(k.pt);
-  return out;
-}
 
 std::unordered_set<const MapPoint*> in_local_ba(KeyFrame& kf) {
   std::unordered_set<const MapPoint*> out;
@@ -126,7 +122,7 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
   EXPECT_NEAR(keyframe_redundancy(*s.kf), static_cast<double>(matched) / close, 1e-9);
 
   ProvisionalPoints pending;
-  pending.add(s.kf, pixels_of(s.f1));
+  pending.add(s.kf, keypoint_pixels(s.f1));
   EXPECT_EQ(pending.check(7, {s.mask}, 50).culled, 0);  // its input frame not known yet
   EXPECT_EQ(pending.assign(7), 1);
   EXPECT_EQ(pending.assign(8), 0);  // assigned once
@@ -170,9 +166,9 @@ TEST(ProvisionalPoints, APointInsideItsMaskNeverReachesBundleAdjustment) {
 TEST(ProvisionalPoints, ANewerMaskOrTheEndConfirmsUnchecked) {
   ProvisionalScene s;
   ProvisionalPoints pending;
-  pending.add(s.kf, pixels_of(s.f1));
+  pending.add(s.kf, keypoint_pixels(s.f1));
   EXPECT_EQ(pending.assign(5), 1);
-  pending.add(s.kf, pixels_of(s.f1));
+  pending.add(s.kf, keypoint_pixels(s.f1));
   EXPECT_EQ(pending.assign(9), 1);
   // Frame 5's own mask never came (a threaded stage skipped it); frame 8's did.
   const ProvisionalCheck c = pending.check(8, {s.mask}, 20);
@@ -184,6 +180,41 @@ TEST(ProvisionalPoints, ANewerMaskOrTheEndConfirmsUnchecked) {
   for (std::size_t i = 1; i < s.new_points.size(); i += 2) EXPECT_FALSE(s.new_points[i]->is_provisional());
   EXPECT_EQ(pending.confirm_all(20).unchecked, 1);
   EXPECT_TRUE(pending.empty());
+}
+
+TEST(ProvisionalPoints, LocalMappingFusesTheConfirmedPoints) {
+  // Frame 0's keyframes see the same places at the same keypoints as the
+  // confirmed points: local mapping merges each such pair, and nothing before
+  // its queue runs.
+  ProvisionalScene s;
+  ProvisionalPoints pending;
+  pending.add(s.kf, keypoint_pixels(s.f1));
+  EXPECT_EQ(pending.assign(7), 1);
+  const ProvisionalCheck c = pending.check(7, {cv::Mat1b::zeros(s.mask.size())}, 50);
+  const int odd = s.count(true, true) + s.count(true, false);
+  ASSERT_EQ(c.confirmed, odd);
+  ASSERT_EQ(c.settled.size(), 1u);
+  LocalMapperOptions options;
+  options.threaded = false;
+  LocalMapper mapper(s.map, options);
+  mapper.fuse_confirmed(c.settled[0]);
+  auto fused = [&s] {
+    int n = 0;
+    for (std::size_t i = 1; i < s.new_points.size(); i += 2) n += s.new_points[i]->is_bad();
+    return n;
+  };
+  EXPECT_EQ(fused(), 0);
+  mapper.process_pending();
+  EXPECT_GT(fused(), odd * 3 / 4);
+  // Each fused keypoint of the keyframe now holds frame 0's point.
+  for (std::size_t i = 1; i < s.new_points.size(); i += 2) {
+    if (s.new_points[i]->is_bad()) {
+      EXPECT_EQ(s.kf->map_point(i), s.old_points[i]) << i;
+    }
+  }
+  const LocalMapperStats stats = mapper.stats();
+  EXPECT_EQ(stats.keyframes, 0);  // fusion alone: no keyframe processed, no BA
+  EXPECT_EQ(stats.bundle_adjustments, 0);
 }
 
 }  // namespace

@@ -7,15 +7,10 @@
 #include "map/synthetic_scene.h"
 #include "stillslam/map/map.h"
 #include "stillslam/tracking/keyframe_hold.h"
+#include "stillslam/tracking/keypoint_pixels.h"
 
 namespace stillslam {
 namespace {
-
-std::vector<cv::Point2f> pixels_of(const Frame& frame) {
-  std::vector<cv::Point2f> out;
-  for (const cv::KeyPoint& k : frame.keypoints_raw()) out.push_back(k.pt);
-  return out;
-}
 
 TEST(KeyframeHold, ReleasesAtItsOwnMaskWithoutThePointsInside) {
   test::SyntheticScene scene(400);
@@ -64,7 +59,7 @@ TEST(KeyframeHold, ReleasesAtItsOwnMaskWithoutThePointsInside) {
   ASSERT_GT(on_new, 10);
 
   KeyframeHold hold;
-  hold.hold(held, pixels_of(f1));
+  hold.hold(held, keypoint_pixels(f1));
   EXPECT_TRUE(hold.release(7, {mask}).keyframes.empty());  // its input frame not known yet
   EXPECT_EQ(hold.assign(7), 1);
   EXPECT_EQ(hold.assign(8), 0);  // assigned once
@@ -105,9 +100,9 @@ TEST(KeyframeHold, ANewerMaskReleasesUnchecked) {
   const cv::Size size(f.setup().camera.width(), f.setup().camera.height());
   KeyframeHold hold;
   EXPECT_EQ(hold.pass(kf).size(), 1u);  // nothing held: passes at once
-  hold.hold(kf, pixels_of(f));
+  hold.hold(kf, keypoint_pixels(f));
   EXPECT_EQ(hold.assign(5), 1);
-  hold.hold(kf, pixels_of(f));
+  hold.hold(kf, keypoint_pixels(f));
   EXPECT_EQ(hold.assign(9), 1);
   // Frame 5's own mask never came (a threaded stage skipped it); frame 8's did.
   const KeyframeHoldRelease r = hold.release(8, {cv::Mat1b(size, uchar(255))});

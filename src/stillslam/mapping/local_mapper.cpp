@@ -13,10 +13,14 @@ LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
     : map_(&map),
       options_(std::move(options)),
       busy_model_(options_.busy),
-      worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous, [this](KeyFramePtr& kf) {
+      worker_(options_.threaded ? WorkerMode::Threaded : WorkerMode::Synchronous, [this](Job& job) {
+        if (job.fuse_only) {
+          fuse(job.kf);
+          return;
+        }
         abort_ba_ = false;
         abort_cause_ = BundleAdjustmentAbort::None;
-        process(kf);
+        process(job.kf);
       }) {
   options_.check();
 }
@@ -25,7 +29,22 @@ LocalMapper::~LocalMapper() { stop(); }
 
 // A new keyframe does not interrupt the BA in progress: tracking asks for
 // that (interrupt_bundle_adjustment) only when it needs the keyframe at once.
-void LocalMapper::insert_keyframe(KeyFramePtr kf) { worker_.submit(std::move(kf)); }
+void LocalMapper::insert_keyframe(KeyFramePtr kf) { worker_.submit({std::move(kf), false}); }
+
+void LocalMapper::fuse_confirmed(KeyFramePtr kf) { worker_.submit({std::move(kf), true}); }
+
+void LocalMapper::fuse(const KeyFramePtr& kf) {
+  ThreadCpuStopwatch cpu;
+  {
+    std::lock_guard<std::mutex> lock(map_->update_mutex());
+    if (!kf->is_bad()) fuse_with_neighbours(*kf, options_.fusion);
+  }
+  LocalMapperStats delta;
+  delta.cpu_ms = cpu.elapsed_ms();
+  delta.cpu_by_step.fusion = delta.cpu_ms;
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  stats_ += delta;
+}
 
 bool LocalMapper::accepts_keyframes(double now) const {
   const bool idle = !worker_.threaded() || worker_.idle();

@@ -1,7 +1,9 @@
 #pragma once
 // Local mapping: for each new keyframe — register it (observations,
 // covisibility), cull recent points, triangulate new points with neighbours,
-// fuse duplicates, run local BA, cull redundant keyframes.
+// fuse duplicates, run local BA, cull redundant keyframes. A keyframe whose
+// provisional points were confirmed later (tracking/provisional_points.h)
+// comes back for the fusion of those points alone.
 //
 // A pipeline stage (core/worker.h): threaded, tracking inserts keyframes and
 // can interrupt a running BA when it needs to hand over another one;
@@ -28,6 +30,11 @@ class LocalMapper {
 
   // Called by tracking (possibly while it holds the map lock).
   void insert_keyframe(KeyFramePtr kf);
+  // A keyframe already processed whose provisional points were just
+  // confirmed: queued like a keyframe, then its points are fused with its
+  // neighbours' as a new keyframe's are (duplicates merged, observations
+  // added, which tracking's keyframe decision counts). Nothing else runs.
+  void fuse_confirmed(KeyFramePtr kf);
   // At input time `now` (the frame's timestamp, seconds). Threaded: nothing
   // queued or in progress. Synchronous: always. With the busy model in use
   // (options.busy_model; busy_model_threaded for threaded runs) the modelled
@@ -60,7 +67,13 @@ class LocalMapper {
   LocalMapperStats stats() const;
 
  private:
+  // A new keyframe, or (fuse_only) one whose confirmed points need fusing.
+  struct Job {
+    KeyFramePtr kf;
+    bool fuse_only = false;
+  };
   void process(const KeyFramePtr& kf);
+  void fuse(const KeyFramePtr& kf);
   // Sets abort_ba_; the first cause since the keyframe started is kept.
   void abort(BundleAdjustmentAbort cause);
 
@@ -75,7 +88,7 @@ class LocalMapper {
   std::vector<MapPointPtr> recent_points_;
   mutable std::mutex stats_mutex_;
   LocalMapperStats stats_;
-  Worker<KeyFramePtr> worker_;  // last: its thread starts after the members above exist
+  Worker<Job> worker_;  // last: its thread starts after the members above exist
 };
 
 }  // namespace stillslam

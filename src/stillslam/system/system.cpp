@@ -9,11 +9,11 @@
 #include "stillslam/core/shipped_files.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
-#include "stillslam/mapping/neighbour_fusion.h"
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
 #include "stillslam/system/snapshot_instances.h"
+#include "stillslam/tracking/keypoint_pixels.h"
 
 namespace stillslam {
 
@@ -118,7 +118,6 @@ void System::build_pipeline(const Settings& settings) {
       if (settings.segmentation.fresh_mask_cull) fresh_mask_check_ = std::make_unique<FreshMaskCheck>();
       if (settings.segmentation.keyframe_hold && settings.segmentation.provisional_points) {
         provisional_points_ = std::make_unique<ProvisionalPoints>();
-        fusion_options_ = settings.local_mapping.fusion;
       } else if (settings.segmentation.keyframe_hold) {
         keyframe_hold_ = std::make_unique<KeyframeHold>();
       }
@@ -276,12 +275,8 @@ void System::move_stages_to_active_map() {
 }
 
 void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
-  if (provisional_points_ && kf->frame_id() == tracked.id() && tracked.mask_age() > keyframe_mask_age_) {
-    // The tracker made its new points provisional under the same rule.
-    std::vector<cv::Point2f> pixels;
-    pixels.reserve(tracked.size());
-    for (const cv::KeyPoint& k : tracked.keypoints_raw()) pixels.push_back(k.pt);
-    provisional_points_->add(kf, std::move(pixels));
+  if (provisional_points_ && kf->frame_id() == tracked.id() && tracker_->makes_provisional_points(tracked)) {
+    provisional_points_->add(kf, keypoint_pixels(tracked));
   }
   if (!keyframe_hold_) {
     mapper_->insert_keyframe(std::move(kf));
@@ -291,10 +286,7 @@ void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
   // mask (a map started from an earlier frame passes); process() gives it
   // the frame's input index.
   if (kf->frame_id() == tracked.id() && tracked.mask_age() > keyframe_mask_age_) {
-    std::vector<cv::Point2f> pixels;
-    pixels.reserve(tracked.size());
-    for (const cv::KeyPoint& k : tracked.keypoints_raw()) pixels.push_back(k.pt);
-    keyframe_hold_->hold(std::move(kf), std::move(pixels));
+    keyframe_hold_->hold(std::move(kf), keypoint_pixels(tracked));
     return;
   }
   for (KeyFramePtr& k : keyframe_hold_->pass(std::move(kf))) mapper_->insert_keyframe(std::move(k));
@@ -304,12 +296,14 @@ int System::release_held_keyframes() {
   if (provisional_points_ && !provisional_points_->empty() && async_masks_->fresh()) {
     const SegmentationResult& fresh = *async_masks_->fresh();
     Map& map = tracker_->map();
-    std::lock_guard<std::mutex> lock(map.update_mutex());
-    const ProvisionalCheck checked =
-        provisional_points_->check(fresh.frame_index, {fresh.dynamic_mask}, map.id_counters()->next_keyframe.load());
-    // What local mapping did for the keyframe's other points: duplicates fused,
-    // observations added (tracking's keyframe decision counts them).
-    for (const KeyFramePtr& kf : checked.settled) fuse_with_neighbours(*kf, fusion_options_);
+    ProvisionalCheck checked;
+    {
+      std::lock_guard<std::mutex> lock(map.update_mutex());
+      checked =
+          provisional_points_->check(fresh.frame_index, {fresh.dynamic_mask}, map.id_counters()->next_keyframe.load());
+    }
+    // Local mapping fuses the confirmed points as it fuses a new keyframe's.
+    for (KeyFramePtr& kf : checked.settled) mapper_->fuse_confirmed(std::move(kf));
     return checked.culled + checked.unlinked;
   }
   if (!keyframe_hold_ || keyframe_hold_->empty() || !async_masks_->fresh()) return 0;
@@ -327,9 +321,12 @@ int System::release_held_keyframes() {
 void System::release_all_held_keyframes() {
   if (provisional_points_ && !provisional_points_->empty()) {
     Map& map = tracker_->map();
-    std::lock_guard<std::mutex> lock(map.update_mutex());
-    const ProvisionalCheck confirmed = provisional_points_->confirm_all(map.id_counters()->next_keyframe.load());
-    for (const KeyFramePtr& kf : confirmed.settled) fuse_with_neighbours(*kf, fusion_options_);
+    ProvisionalCheck confirmed;
+    {
+      std::lock_guard<std::mutex> lock(map.update_mutex());
+      confirmed = provisional_points_->confirm_all(map.id_counters()->next_keyframe.load());
+    }
+    for (KeyFramePtr& kf : confirmed.settled) mapper_->fuse_confirmed(std::move(kf));
   }
   if (!keyframe_hold_) return;
   for (KeyFramePtr& kf : keyframe_hold_->release_all().keyframes) mapper_->insert_keyframe(std::move(kf));
@@ -431,6 +428,9 @@ FrameStats System::process(const SensorFrame& input) {
     }
   }
   stats.held_points_removed = release_held_keyframes();
+  // Deterministic: local mapping fuses confirmed points before this frame is
+  // tracked (the threaded mapper, idle, would start at once).
+  if (options_.deterministic && provisional_points_) mapper_->process_pending();
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
   const TrackingResult result = tracker_->track(frame);

@@ -208,7 +208,6 @@ class System {
   // Segmentation.provisionalPoints (instead of keyframe_hold_): such keyframes
   // go to local mapping at once, their new points wait here for the mask.
   std::unique_ptr<ProvisionalPoints> provisional_points_;
-  FusionOptions fusion_options_;  // confirmed points are fused as local mapping fuses new ones
   int keyframe_mask_age_ = 0;
   // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes
   // (`tracked`: the frame being tracked, LocalMappingLink::insert_keyframe).

@@ -26,7 +26,8 @@ struct ProvisionalCheck {
   int unlinked = 0;   // matches to older points inside the mask
   int unchecked = 0;  // keyframes whose own mask never came (a newer one did): confirmed as they are
   // The keyframes whose points were settled (not culled keyframes): their
-  // confirmed points were never fused, the caller fuses them now.
+  // confirmed points were never fused; the caller has local mapping fuse them
+  // (LocalMapper::fuse_confirmed).
   std::vector<KeyFramePtr> settled;
 };
 

@@ -540,7 +540,7 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
   const bool check = last_frame_.has_pose() &&
                      ((options_.new_point_check.enabled && last_frame_.id() + 1 == frame.id()) || start_window);
   // Under a carried mask too old, the new points wait for the frame's own mask.
-  const bool provisional = options_.provisional_mask_age >= 0 && frame.mask_age() > options_.provisional_mask_age;
+  const bool provisional = makes_provisional_points(frame);
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i) && !failed_match[i]) {
       const Eigen::Vector3d p = *kf->unproject(i);
@@ -565,6 +565,10 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
   last_keyframe_frame_id_ = frame.id();
   keyframe_budget_.spend(frame.timestamp());
   if (link_.insert_keyframe) link_.insert_keyframe(kf, frame);
+}
+
+bool Tracker::makes_provisional_points(const Frame& frame) const {
+  return options_.provisional_mask_age >= 0 && frame.mask_age() > options_.provisional_mask_age;
 }
 
 }  // namespace stillslam

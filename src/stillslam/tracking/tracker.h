@@ -70,6 +70,10 @@ class Tracker {
   // state and start lost, so the next frames relocalize in it and then track.
   void localize_in(Map& map);
   Map& map() const { return *map_; }
+  // A keyframe made from `frame` makes its new depth points provisional
+  // (TrackerOptions::provisional_mask_age): the rule create_keyframe applies,
+  // for System to know which keyframes wait for their own mask.
+  bool makes_provisional_points(const Frame& frame) const;
 
   TrackingState state() const { return state_; }
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
