@@ -93,8 +93,6 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.keyframeBudgetStartKeyframes", "5000", "is 5000: must be in [0, 1000]"},
     {"Tracking.keyframeBudgetStartSeconds", "-0.5", "is -0.5: must be in [0, 1000]"},
     {"Tracking.keyframeBudgetStartSeconds", "5000", "is 5000: must be in [0, 1000]"},
-    {"Tracking.keyframeBudgetRatio", "-0.1", "is -0.1: must be in [0, 1]"},
-    {"Tracking.keyframeBudgetRatio", "1.5", "is 1.5: must be in [0, 1]"},
     {"Tracking.newKeyframePoints", "1e6", "is 1000000: must be in [0, 50000]"},
     {"Tracking.motionSearchRadius", "0", "is 0: must be in (0, 1000]"},
     {"Tracking.motionSearchRadius", "1e6", "is 1000000: must be in (0, 1000]"},

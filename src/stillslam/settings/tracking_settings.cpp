@@ -37,7 +37,6 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
                "KeyFrameBudgetOptions.start_keyframes", {0, 1000});
   keys.number("keyframeBudgetStartSeconds", tracker.keyframe_budget.start_seconds,
               "KeyFrameBudgetOptions.start_seconds", {0, 1000});
-  keys.number("keyframeBudgetRatio", tracker.keyframe_budget_ratio, "TrackerOptions.keyframe_budget_ratio", {0, 1});
   keys.integer("keyframeBudgetInliers", tracker.keyframe_budget_inliers, "TrackerOptions.keyframe_budget_inliers",
                {0, 50000});
   keys.integer("closePointsTrackedMin", tracker.close_points_tracked_min,

@@ -9,7 +9,8 @@
 // takes its keyframe anyway (the balance stays at >= 0). The first
 // `start_keyframes` keyframes of a map are outside the budget: a young map
 // needs them (a 40-frame sequence lost half its accuracy without them), and
-// the bucket is full after them.
+// the bucket is full after them. With `start_seconds` > 0 that exemption also
+// ends that many seconds after the map's first keyframe.
 namespace stillslam {
 
 struct KeyFrameBudgetOptions {

@@ -504,8 +504,7 @@ bool Tracker::need_new_keyframe(const Frame& frame, int inliers) const {
   const bool c2 = (inliers < reference_matches * ratio || need_close) && inliers > 15;
   if (!((c1a || c1b || c1c) && c2)) return false;
   const bool weak = inliers < reference_matches * 0.25;
-  const bool outside_budget = weak || inliers < options_.keyframe_budget_inliers ||
-                              inliers < reference_matches * options_.keyframe_budget_ratio;
+  const bool outside_budget = weak || inliers < options_.keyframe_budget_inliers;
   if (!outside_budget && !keyframe_budget_.allows(frame.timestamp())) return false;
   const std::size_t queued = link_.queued_keyframes ? link_.queued_keyframes(frame.timestamp()) : 0;
   const KeyFrameAdmission admission =

@@ -22,7 +22,6 @@ void TrackerOptions::check() const {
            std::max(max_frames_between_keyframes, 0));
   keyframe_budget.check();
   in_range("TrackerOptions.keyframe_budget_inliers", keyframe_budget_inliers, 0, 50000);
-  in_range("TrackerOptions.keyframe_budget_ratio", keyframe_budget_ratio, 0, 1);
   in_range("TrackerOptions.interrupt_inliers", interrupt_inliers, 0, 50000);
   above("TrackerOptions.motion_search_radius", motion_search_radius, 0);
   above("TrackerOptions.local_map_search_th", local_map_search_th, 0);

@@ -40,10 +40,6 @@ struct TrackerOptions {
   // budget holds while tracking is comfortable, not at a map's start or when
   // the view is mostly new or hidden (bench/README.md, issue #21 session 10).
   int keyframe_budget_inliers = 150;
-  // A frame with fewer inliers than this share of the reference keyframe's
-  // tracked points takes its keyframe outside the budget too (ORB-SLAM's
-  // c1c uses 0.25, which always is); 0: only that.
-  double keyframe_budget_ratio = 0;
   // A weak frame interrupts the mapper's local BA only with fewer inliers (tracking/keyframe_admission.h).
   int interrupt_inliers = 100;
   float motion_search_radius = 7.f;    // pixels at level 0 (doubled on a retry)
