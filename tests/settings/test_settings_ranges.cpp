@@ -91,6 +91,8 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.keyframesPerSecond", "-1", "is -1: must be in [0, 1000]"},
     {"Tracking.keyframeBudgetStartKeyframes", "-1", "is -1: must be in [0, 1000]"},
     {"Tracking.keyframeBudgetStartKeyframes", "5000", "is 5000: must be in [0, 1000]"},
+    {"Tracking.keyframeBudgetStartSeconds", "-0.5", "is -0.5: must be in [0, 1000]"},
+    {"Tracking.keyframeBudgetStartSeconds", "5000", "is 5000: must be in [0, 1000]"},
     {"Tracking.newKeyframePoints", "1e6", "is 1000000: must be in [0, 50000]"},
     {"Tracking.motionSearchRadius", "0", "is 0: must be in (0, 1000]"},
     {"Tracking.motionSearchRadius", "1e6", "is 1000000: must be in (0, 1000]"},

@@ -95,6 +95,40 @@ TEST(KeyFrameBudget, AMapsFirstKeyframesAreOutsideTheBudget) {
   EXPECT_FALSE(fresh.allows(5 + 12 / 30.0));
 }
 
+TEST(KeyFrameBudget, TheStartExemptionEndsAfterItsSeconds) {
+  // Up to 1000 keyframes exempt, but only within 0.18 s of the map's first:
+  // frames 0-5 (frame 6 is 0.2 s after), then the full bucket (2), then the rate.
+  KeyFrameBudget timed({5, 2, 1000, 0.18});
+  for (int f = 0; f < 6; ++f) {
+    EXPECT_TRUE(timed.allows(1 + f / 30.0)) << f;
+    timed.spend(1 + f / 30.0);
+  }
+  for (int f = 6; f < 8; ++f) {
+    EXPECT_TRUE(timed.allows(1 + f / 30.0)) << f;
+    timed.spend(1 + f / 30.0);
+  }
+  EXPECT_FALSE(timed.allows(1 + 8 / 30.0));
+  // Both limits: the count ends it first here (3 keyframes within 0.18 s).
+  KeyFrameBudget both({5, 2, 3, 0.18});
+  EXPECT_EQ(keyframes_made(both, 1), 3 + 2 + 4);
+  KeyFrameBudget count_only({5, 2, 3});
+  EXPECT_EQ(keyframes_made(count_only, 1), 3 + 2 + 4);
+  // Over 4 s: 6 exempt in the first 0.18 s, then as the plain budget (21 in
+  // 4 s) less the time the exemption took.
+  KeyFrameBudget fresh({5, 2, 1000, 0.18});
+  const int made = keyframes_made(fresh, 4);
+  EXPECT_EQ(made, 6 + 2 + 18);
+  // A reset (a new map) starts the clock again at the next map's first keyframe.
+  fresh.reset();
+  for (int f = 0; f < 6; ++f) {
+    EXPECT_TRUE(fresh.allows(9 + f / 30.0)) << f;
+    fresh.spend(9 + f / 30.0);
+  }
+  fresh.spend(9 + 6 / 30.0);
+  fresh.spend(9 + 7 / 30.0);
+  EXPECT_FALSE(fresh.allows(9 + 8 / 30.0));
+}
+
 TEST(KeyFrameBudget, OptionsOutOfRangeNameTheField) {
   try {
     KeyFrameBudget budget({-1, 2});
@@ -113,6 +147,12 @@ TEST(KeyFrameBudget, OptionsOutOfRangeNameTheField) {
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.start_keyframes");
+  }
+  try {
+    KeyFrameBudget budget({3, 2, 10, -1});
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "KeyFrameBudgetOptions.start_seconds");
   }
 }
 

@@ -35,6 +35,8 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.number("keyframeBurst", tracker.keyframe_budget.burst, "KeyFrameBudgetOptions.burst", {1, 1000});
   keys.integer("keyframeBudgetStartKeyframes", tracker.keyframe_budget.start_keyframes,
                "KeyFrameBudgetOptions.start_keyframes", {0, 1000});
+  keys.number("keyframeBudgetStartSeconds", tracker.keyframe_budget.start_seconds,
+              "KeyFrameBudgetOptions.start_seconds", {0, 1000});
   keys.integer("keyframeBudgetInliers", tracker.keyframe_budget_inliers, "TrackerOptions.keyframe_budget_inliers",
                {0, 50000});
   keys.integer("closePointsTrackedMin", tracker.close_points_tracked_min,
