@@ -73,12 +73,11 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
     return out;
   }
 
-  // Without masks a match's agreement with the motion is judged against a
-  // bound scaled by the coarser of its two keypoints' pyramid levels (as the
-  // pose stages weight errors by sigma^2): a static point detected at a coarse
-  // level is a few pixels off, not moving. The RANSAC motion itself comes from
-  // the level-0 bound. (A walker can agree once by chance: the tracker keeps a
-  // point only when most confirming frames confirm it.)
+  // Without masks a match confirms its point only within the level-0 bound
+  // (the RANSAC's), but it finds the point moving only beyond a bound scaled
+  // by the coarser of its two keypoints' pyramid levels (as the pose stages
+  // weight errors by sigma^2): a static point detected at a coarse level is a
+  // few pixels off in one frame, not moving.
   std::vector<bool> agrees = motion.inlier;
   if (unmasked && motion.success) {
     const ScalePyramid& pyramid = first.setup().pyramid;
@@ -96,7 +95,7 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
   for (std::size_t k = 0; k < matches.size(); ++k) {
     const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
     out.keep[i] = agrees[k];
-    out.confirmed[i] = agrees[k];
+    out.confirmed[i] = motion.inlier[k];
   }
   for (const std::size_t i : with_depth) {
     const cv::Point2f& p = first.keypoint(i).pt;

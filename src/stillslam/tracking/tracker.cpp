@@ -214,14 +214,13 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
     if (check.accepted) {
       for (std::size_t i = 0; i < start_keep_.size(); ++i) {
         start_keep_[i] = start_keep_[i] && check.keep[i];
-        start_confirmed_[i] += check.confirmed[i] ? 1 : 0;
+        start_confirmed_[i] = start_confirmed_[i] || check.confirmed[i];
       }
       if (++start_confirmations_ >= confirm_frames) {
         Frame first = std::move(*start_candidate_);
-        // Without masks a point most confirming frames did not confirm may be a
-        // mover no frame matched, or one that agreed with the motion by chance.
+        // Without masks a point nothing confirmed may be a mover no frame matched.
         std::vector<bool> keep = std::move(start_keep_);
-        for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && 2 * start_confirmed_[i] > confirm_frames;
+        for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
         start_candidate_.reset();
         initialize(first, frame, keep);
         if (unmasked && options_.init_unmasked_trust_frames > 0) {
@@ -251,7 +250,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   }
   start_candidate_ = frame;
   start_keep_.assign(frame.size(), true);
-  start_confirmed_.assign(frame.size(), 0);
+  start_confirmed_.assign(frame.size(), false);
   start_confirmations_ = 0;
   return Start::Waiting;
 }

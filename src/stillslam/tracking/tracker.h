@@ -124,7 +124,7 @@ class Tracker {
   // keypoints that may become map points.
   std::optional<Frame> start_candidate_;
   std::vector<bool> start_keep_;
-  std::vector<int> start_confirmed_;  // per keypoint: confirming frames that matched it as an inlier
+  std::vector<bool> start_confirmed_;  // matched as an inlier by some confirming frame
   // Keypoints of last_frame_ that give no visual-odometry point (the map's
   // first frame: those its start check left out).
   std::vector<bool> last_frame_left_out_;
