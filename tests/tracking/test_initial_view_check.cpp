@@ -2,6 +2,8 @@
 // which chosen points move between the two frames.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <random>
 
 #include "map/synthetic_scene.h"
@@ -123,6 +125,74 @@ TEST(InitialViewCheck, UnmaskedKeepsOnlyConfirmedStaticPoints) {
   InitialViewCheckOptions strict;
   strict.max_moving_share_unmasked = 0.2;
   EXPECT_FALSE(check_initial_view(first, next, strict).accepted);
+}
+
+// The same frame with the keypoints k where shift_px[k] is not zero at
+// `level` of the pyramid and moved by shift_px[k] (the error of a keypoint
+// detected at a coarse level).
+Frame with_levels(const Frame& f, const std::vector<Eigen::Vector2d>& shift_px, int level) {
+  std::vector<cv::KeyPoint> kps = f.keypoints();
+  for (std::size_t k = 0; k < kps.size(); ++k) {
+    if (shift_px[k].isZero()) continue;
+    kps[k].octave = level;
+    kps[k].pt.x += static_cast<float>(shift_px[k].x());
+    kps[k].pt.y += static_cast<float>(shift_px[k].y());
+  }
+  return Frame(f.id(), f.timestamp(), f.setup_ptr(), kps, kps, f.descriptors().clone(), f.u_right(), f.depth());
+}
+
+// Without masks a match finds its point moving only beyond a bound scaled
+// by its keypoints' pyramid level, but confirms it only within the level-0
+// bound: static points detected at level 6 (scale 2.99) and 2.5 px off in the
+// next frame are neither confirmed nor left out (another frame may confirm
+// them), the same offset at level 0 leaves them out, and movers are left out
+// at any level.
+TEST(InitialViewCheck, UnmaskedMovingBoundScalesWithThePyramidLevel) {
+  test::SyntheticScene scene(1500);
+  const std::vector<std::size_t> movers = first_points(scene, 0.2);
+  std::vector<std::size_t> first_point, next_point;
+  const Frame first = scene.make_frame(0, test::pose_at(0), &first_point);
+  for (std::size_t i : movers) scene.move_point(i, Eigen::Vector3d(0.1, 0, 0));  // 10-25 px
+  const Frame next_exact = scene.make_frame(1, test::pose_at(0.02, 0, 1), &next_point);
+  // Every other point is 2.5 px off in the next frame, each in its own
+  // direction (no camera motion fits them); movers are all coarse and off.
+  std::vector<Eigen::Vector2d> off(next_exact.size(), Eigen::Vector2d::Zero());
+  for (std::size_t k = 0; k < off.size(); ++k) {
+    const std::size_t i = next_point[k];
+    const double angle = 2.39996 * static_cast<double>(i);  // the golden angle: directions spread evenly
+    if (i < movers.size() || i % 2 == 0) off[k] = 2.5 * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  }
+  enum Kind { Exact, Off, Mover };
+  auto kind = [&](std::size_t k) {
+    const std::size_t i = first_point[k];
+    return i < movers.size() ? Mover : i % 2 == 0 ? Off : Exact;
+  };
+  // Per kind: first-frame points, kept (not found moving), confirmed.
+  auto count = [&](const InitialViewCheck& c) {
+    std::array<std::array<int, 3>, 3> n{};
+    for (std::size_t k = 0; k < first.size(); ++k) {
+      ++n[kind(k)][0];
+      n[kind(k)][1] += c.keep[k] ? 1 : 0;
+      n[kind(k)][2] += c.confirmed[k] ? 1 : 0;
+    }
+    return n;
+  };
+
+  const InitialViewCheck coarse = check_initial_view(first, with_levels(next_exact, off, 6), {});
+  ASSERT_TRUE(coarse.accepted) << coarse.reason;
+  auto n = count(coarse);
+  EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);
+  EXPECT_GT(n[Off][1], 0.9 * n[Off][0]);
+  EXPECT_EQ(n[Off][2], 0);
+  EXPECT_LT(n[Mover][1], 0.02 * n[Mover][0]);  // a mover that left the view has no match to judge it by
+  EXPECT_EQ(n[Mover][2], 0);
+
+  const InitialViewCheck fine = check_initial_view(first, with_levels(next_exact, off, 0), {});
+  ASSERT_TRUE(fine.accepted) << fine.reason;
+  n = count(fine);
+  EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);
+  EXPECT_LT(n[Off][1], 0.1 * n[Off][0]);
+  EXPECT_LT(n[Mover][1], 0.02 * n[Mover][0]);
 }
 
 // Movers each going their own way (limbs, several people): no motion holds

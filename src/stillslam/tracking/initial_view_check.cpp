@@ -5,6 +5,7 @@
 
 #include "stillslam/core/option_check.h"
 #include "stillslam/features/descriptor_matcher.h"
+#include "stillslam/features/scale_pyramid.h"
 #include "stillslam/geometry/pnp.h"
 #include "stillslam/map/matching_thresholds.h"
 
@@ -72,10 +73,28 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
     return out;
   }
 
+  // Without masks a match confirms its point only within the level-0 bound
+  // (the RANSAC's), but it finds the point moving only beyond a bound scaled
+  // by the coarser of its two keypoints' pyramid levels (as the pose stages
+  // weight errors by sigma^2): a static point detected at a coarse level is a
+  // few pixels off in one frame, not moving.
+  std::vector<bool> agrees = motion.inlier;
+  if (unmasked && motion.success) {
+    const ScalePyramid& pyramid = first.setup().pyramid;
+    for (std::size_t k = 0; k < matches.size(); ++k) {
+      const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
+      const int level = std::max(first.keypoint(i).octave,
+                                 next.keypoint(static_cast<std::size_t>(matches[k].trainIdx)).octave);
+      const double bound = options.max_reprojection_error_unmasked_px *
+                           pyramid.scale[static_cast<std::size_t>(std::clamp(level, 0, pyramid.n_levels - 1))];
+      const Eigen::Vector3d in_next = motion.T_cam_world * points[k];
+      agrees[k] = in_next.z() > 0 && (camera.project(in_next) - pixels[k]).norm() <= bound;
+    }
+  }
   out.confirmed.assign(first.size(), false);
   for (std::size_t k = 0; k < matches.size(); ++k) {
     const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
-    out.keep[i] = motion.inlier[k];
+    out.keep[i] = agrees[k];
     out.confirmed[i] = motion.inlier[k];
   }
   for (const std::size_t i : with_depth) {
