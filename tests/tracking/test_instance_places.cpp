@@ -3,6 +3,8 @@
 // radius that is not in the frame; places not seen for memory_frames expire.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "stillslam/core/error.h"
 #include "stillslam/tracking/instance_places.h"
 
@@ -36,6 +38,45 @@ TEST(InstancePlaces, MatchesWhereItWasSeenMostCompletely) {
   InstancePlaces last_only(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
   last_only.seen(3, "person", 1, &head, 800);
   EXPECT_EQ(last_only.match("person", feet, {}), 0u);
+}
+
+// A walker passes in front of a seated person (id 2): the seated person's
+// sliver has taken the walker's id 1 by mask overlap, the walker a new id 7
+// near the seated person's place. The sliver, far from where id 1 was, takes
+// id 2 back; the walker then takes id 1 (left free). match() alone gave id 2
+// to the new id.
+TEST(InstancePlaces, SwappedIdsGoBackToTheirPlaces) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d seated(0, 0, 2), walker(0.6, 0, 1.6);
+  places.seen(2, "person", 0, &seated);
+  places.seen(1, "person", 0, &walker);
+  const std::vector<PlaceClaim> claims{{1, "person", Eigen::Vector3d(0.05, 0, 2), false},
+                                       {7, "person", Eigen::Vector3d(0.4, 0, 1.8), true}};
+  EXPECT_EQ(places.match("person", claims[1].p_world, {1, 7}), 2u);
+  const std::map<std::uint32_t, std::uint32_t> expected{{1, 2}, {7, 1}};
+  EXPECT_EQ(places.assign(claims, {}), expected);
+}
+
+// A new id near a remembered person while another person (an older id,
+// where its id was) stands nearer to that place: nobody takes it over. With
+// that person out of the radius, the new id does.
+TEST(InstancePlaces, ARememberedPlaceAnotherInstanceStandsAtIsNotHandedOver) {
+  InstancePlaces places(InstancePlacesOptions{.radius_m = 0.5, .memory_frames = 10});
+  const Eigen::Vector3d seated(0, 0, 2), walker(0.3, 0, 2);
+  places.seen(2, "person", 0, &seated);
+  places.seen(1, "person", 0, &walker);
+  const PlaceClaim fragment{7, "person", Eigen::Vector3d(-0.4, 0, 2), true};
+  EXPECT_TRUE(places.assign({{1, "person", Eigen::Vector3d(0.32, 0, 2), false}, fragment}, {}).empty());
+  const Eigen::Vector3d gone(0.9, 0, 2);
+  places.seen(1, "person", 1, &gone);
+  const std::map<std::uint32_t, std::uint32_t> expected{{7, 2}};
+  EXPECT_EQ(places.assign({{1, "person", Eigen::Vector3d(0.92, 0, 2), false}, fragment}, {}), expected);
+  // Other classes, instances in the frame (`present`) and radius 0 take nothing over.
+  EXPECT_TRUE(places.assign({{7, "chair", Eigen::Vector3d(0, 0, 2), true}}, {}).empty());
+  EXPECT_TRUE(places.assign({fragment}, {2}).empty());
+  InstancePlaces off(InstancePlacesOptions{.radius_m = 0, .memory_frames = 10});
+  off.seen(2, "person", 0, &seated);
+  EXPECT_TRUE(off.assign({fragment}, {}).empty());
 }
 
 TEST(InstancePlaces, ForgetsPlacesNotSeenForMemoryFrames) {

@@ -6,6 +6,11 @@
 // too much between frames (a small person behind a passer-by). A still
 // person or a parked object stays where it was, so its place identifies it;
 // a walking person is rarely found where another instance of its class was.
+// An id can also swap: when a walker passes in front of a seated person, the
+// seated person's remaining sliver may take the walker's id by mask overlap
+// (segmentation/instance_ids.h) and the walker a new one; assign() hands each
+// remembered instance to the nearest of this frame's instances only, and lets
+// an older id take one over when it is no longer where that id was.
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -15,6 +20,14 @@
 #include <vector>
 
 namespace stillslam {
+
+// One of this frame's instances with a known place (assign()).
+struct PlaceClaim {
+  std::uint32_t id = 0;  // its id so far (a new id, or the one it had)
+  std::string category;
+  Eigen::Vector3d p_world = Eigen::Vector3d::Zero();
+  bool is_new = false;   // a new id: may take over any remembered instance
+};
 
 struct InstancePlacesOptions {
   double radius_m = 0.5;    // same place: world points of the same class this close; 0: no matching
@@ -39,6 +52,17 @@ class InstancePlaces {
   // centre off the instance's).
   std::uint32_t match(const std::string& category, const Eigen::Vector3d& p_world,
                       const std::set<std::uint32_t>& present) const;
+  // Which remembered instance of its class, not in this frame (`present`
+  // and the claims' ids), each claim takes over: nearest pairs first, within
+  // the radius, each remembered instance to one claim at most. A new id may
+  // take one over; an older id only when it has jumped: it is more than half
+  // the radius and more than twice as far from where its own id was last
+  // seen as from the remembered place. A remembered instance nearest to a
+  // claim that may not take it over (another instance of its class stands
+  // there) is handed to nobody this frame. A claim's id left behind is free
+  // for the others to take. Returns claim id -> remembered id.
+  std::map<std::uint32_t, std::uint32_t> assign(const std::vector<PlaceClaim>& claims,
+                                                 std::set<std::uint32_t> present) const;
   // Drops the instances not seen for memory_frames before `frame`; returns their ids.
   std::vector<std::uint32_t> expire(std::int64_t frame);
   void clear() { places_.clear(); }
@@ -53,6 +77,8 @@ class InstancePlaces {
     int most_pixels = -1;
     Eigen::Vector3d p_most = Eigen::Vector3d::Zero();  // where it was seen on the most pixels
   };
+  // Distance from `p_world` to where the place was seen last or on the most pixels.
+  static double distance(const Place& place, const Eigen::Vector3d& p_world);
   InstancePlacesOptions options_;
   std::map<std::uint32_t, Place> places_;
 };

@@ -27,6 +27,11 @@ void MotionEvidenceOptions::check() const {
                       "must be >= static_floor_px (" + text(static_floor_px) + ")");
   }
   at_least("MotionEvidenceOptions.min_matches", min_matches, 1);
+  at_least("MotionEvidenceOptions.kept_min_matches", kept_min_matches, 1);
+  if (kept_max_px < moving_floor_px) {
+    throw OptionError("MotionEvidenceOptions.kept_max_px", text(kept_max_px),
+                      "must be >= moving_floor_px (" + text(moving_floor_px) + ")");
+  }
   at_least("MotionEvidenceOptions.min_background", min_background, 1);
   at_least("MotionEvidenceOptions.moving_weight", moving_weight, 1);
   at_least("MotionEvidenceOptions.default_frames", default_frames, 1);
@@ -70,6 +75,11 @@ std::vector<InstanceMotionState> MotionEvidence::update(const std::vector<double
     if (have_background && s.matches >= options_.min_matches) {
       if (s.median_px <= agree_px) s.verdict = MotionVerdict::Agrees;
       if (s.median_px > (instance.object ? object_move_px : move_px)) s.verdict = MotionVerdict::Disagrees;
+    }
+    // A kept person (static as of the last frame) is not undone by a few or wild matches.
+    if (s.verdict == MotionVerdict::Disagrees && !instance.object && s.is_static &&
+        (s.matches < options_.kept_min_matches || s.median_px > options_.kept_max_px)) {
+      s.verdict = MotionVerdict::NoEvidence;
     }
     const double needed = options_.frames_for(instance.category);
     if (s.verdict == MotionVerdict::Agrees) s.log_odds = std::min(s.log_odds + 1.0, needed);

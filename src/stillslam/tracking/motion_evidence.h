@@ -30,6 +30,14 @@ struct MotionEvidenceOptions {
   double object_moving_factor = 3.0;
   double object_moving_floor_px = 3.0;
   int min_matches = 4;        // fewer matched features on an instance: no evidence this frame
+  // An instance of a masked class (a person) kept as static loses its
+  // evidence only to a disagreement from at least kept_min_matches matches
+  // with a median residual of at most kept_max_px: fewer matches, or
+  // residuals far above a walk's (about 70 px over 6 frames at 2 m), are
+  // mismatches on its sway-blurred texture, not motion (bench/README.md,
+  // issue #19 session 11). Objects are not shielded.
+  int kept_min_matches = 8;
+  double kept_max_px = 150.0;
   int min_background = 20;    // fewer background matches: no evidence for anyone this frame
   double moving_weight = 4.0; // log-odds lost per disagreeing frame (one agreeing frame gains 1)
   // Agreeing frames an instance needs before it is kept as static (its

@@ -207,10 +207,10 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
   }
   const Eigen::Isometry3d T_world_cam = frame.T_cam_world().inverse();
   std::set<std::uint32_t> present;
-  for (const auto& [id, category] : categories_) present.insert(id);
-  const std::map<std::uint32_t, std::string> categories = categories_;
-  for (const auto& [first_id, category] : categories) {
-    std::uint32_t id = first_id;
+  std::map<std::uint32_t, Eigen::Vector3d> places;
+  std::vector<PlaceClaim> claims;
+  for (const auto& [id, category] : categories_) {
+    present.insert(id);
     std::optional<Eigen::Vector3d> place;
     if (const auto m = mask_points_.find(id); m != mask_points_.end()) {
       place = T_world_cam * m->second;
@@ -223,38 +223,60 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
       }
       place = T_world_cam * m;
     }
+    if (!place) continue;
+    places[id] = *place;
+    // A new id (within its first span frames, not yet matched) may take over an earlier instance.
     const std::uint32_t stable = stable_of_[id];
-    int& age = age_[stable];
-    // Only a new id (within its first span frames, not yet matched) looks for an earlier instance.
-    if (place && id == stable && age < options_.span) {
-      if (const std::uint32_t earlier = places_.match(category, *place, present)) {
-        alias_[stable] = earlier;
-        check_.relabel(id, earlier);
-        for (std::uint32_t& l : frame_labels) {
-          if (l == id) l = earlier;
-        }
-        for (std::uint32_t& l : inside_.instance) {
-          if (l == id) l = earlier;
-        }
-        cv::Mat1b here = labels_ == static_cast<int>(id);
-        labels_.setTo(static_cast<int>(earlier), here);
-        categories_.erase(id);
-        categories_[earlier] = category;
-        if (const auto m = mask_pixels_.find(id); m != mask_pixels_.end()) {
-          mask_pixels_[earlier] = m->second;
-          mask_pixels_.erase(id);
-        }
-        stable_of_.erase(id);
-        stable_of_[earlier] = stable;
-        if (dynamic_ids_.erase(id)) dynamic_ids_.insert(earlier);
-        moving_.erase(id);
-        present.insert(earlier);
-        id = earlier;
+    claims.push_back({id, category, *place, id == stable && age_[stable] < options_.span});
+  }
+  // old id -> the earlier instance it is (all relabelled at once: two ids may swap).
+  const std::map<std::uint32_t, std::uint32_t> remap = places_.assign(claims, present);
+  const auto to = [&remap](std::uint32_t id) {
+    const auto it = remap.find(id);
+    return it != remap.end() ? it->second : id;
+  };
+  if (!remap.empty()) {
+    std::set<std::uint32_t> fresh;  // new ids: their own evidence and history go to the earlier instance
+    for (const PlaceClaim& c : claims) {
+      if (c.is_new && remap.count(c.id)) fresh.insert(c.id);
+    }
+    for (const auto& [from, earlier] : remap) {
+      alias_[stable_of_[from]] = earlier;
+      // An older id that jumped keeps its frames and evidence: they were another instance's.
+      if (fresh.count(from)) {
+        check_.relabel(from, earlier);
+        moving_.erase(from);
       }
     }
-    ++age;
+    for (std::uint32_t& l : frame_labels) l = to(l);
+    for (std::uint32_t& l : inside_.instance) l = to(l);
+    for (int v = 0; v < labels_.rows; ++v) {
+      for (int u = 0; u < labels_.cols; ++u) {
+        if (labels_(v, u) != 0) labels_(v, u) = static_cast<int>(to(static_cast<std::uint32_t>(labels_(v, u))));
+      }
+    }
+    std::map<std::uint32_t, std::string> categories;
+    for (const auto& [id, category] : categories_) categories[to(id)] = category;
+    categories_ = std::move(categories);
+    std::map<std::uint32_t, int> pixels;
+    for (const auto& [id, n] : mask_pixels_) pixels[to(id)] = n;
+    mask_pixels_ = std::move(pixels);
+    std::map<std::uint32_t, std::uint32_t> stable_of;
+    for (const auto& [id, stable] : stable_of_) stable_of[to(id)] = stable;
+    stable_of_ = std::move(stable_of);
+    std::set<std::uint32_t> dynamic_ids;
+    for (std::uint32_t id : dynamic_ids_) dynamic_ids.insert(to(id));
+    dynamic_ids_ = std::move(dynamic_ids);
+    std::map<std::uint32_t, Eigen::Vector3d> relabelled;
+    for (const auto& [id, p] : places) relabelled[to(id)] = p;
+    places = std::move(relabelled);
+  }
+  for (const auto& [id, category] : categories_) {
+    ++age_[stable_of_[id]];
+    const auto place = places.find(id);
     const auto area = mask_pixels_.find(id);
-    places_.seen(id, category, judged_, place ? &*place : nullptr, area != mask_pixels_.end() ? area->second : 0);
+    places_.seen(id, category, judged_, place != places.end() ? &place->second : nullptr,
+                 area != mask_pixels_.end() ? area->second : 0);
   }
   for (std::uint32_t gone : places_.expire(judged_)) {
     check_.forget(gone);

@@ -15,7 +15,10 @@
 //
 // An instance that comes back under a new id (it left the view, was hidden,
 // or its mask changed too much) where one of its class was last seen takes
-// over that one's evidence (instance_places.h).
+// over that one's evidence and keeps its state (instance_places.h); so does an
+// older id found far from where that id was and at another one's place (two
+// ids swapped by mask overlap), while the one found at its own place blocks
+// the hand-over to others.
 //
 // Per frame, in order: mask_for() (frame builder, fresh segmentation),
 // collect() (frame builder, after extraction), on_tracked() (after tracking,
@@ -83,9 +86,9 @@ class MotionStage {
   std::uint32_t label_at(const cv::Point2f& p) const;
   bool masked(std::uint32_t id) const;
   std::uint32_t evidence_id(std::uint32_t stable) const;
-  // Matches this frame's new instances with the places of earlier ones
-  // (relabelling them in `frame_labels` and the stage's state) and records
-  // where every instance is now.
+  // Matches this frame's new (or swapped) instances with the places of
+  // earlier ones (InstancePlaces::assign; relabelling them in `frame_labels`
+  // and the stage's state) and records where every instance is now.
   void place_instances(const Frame& frame, std::vector<std::uint32_t>& frame_labels);
   // Objects without a verdict from their features this frame, judged from
   // depth against the frame span judged frames earlier (free_space_check.h).
