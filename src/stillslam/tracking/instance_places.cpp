@@ -29,22 +29,6 @@ void InstancePlaces::seen(std::uint32_t id, const std::string& category, std::in
   }
 }
 
-std::uint32_t InstancePlaces::match(const std::string& category, const Eigen::Vector3d& p_world,
-                                    const std::set<std::uint32_t>& present) const {
-  std::uint32_t best = 0;
-  if (options_.radius_m <= 0) return best;  // matching off
-  double best_d = options_.radius_m;
-  for (const auto& [id, p] : places_) {
-    if (!p.known || p.category != category || present.count(id)) continue;
-    const double d = distance(p, p_world);
-    if (d <= best_d) {
-      best_d = d;
-      best = id;
-    }
-  }
-  return best;
-}
-
 double InstancePlaces::distance(const Place& place, const Eigen::Vector3d& p_world) {
   return std::min((place.p_world - p_world).norm(), (place.p_most - p_world).norm());
 }

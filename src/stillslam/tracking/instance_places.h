@@ -45,15 +45,11 @@ class InstancePlaces {
   // `pixels` pixels.
   void seen(std::uint32_t id, const std::string& category, std::int64_t frame, const Eigen::Vector3d* p_world,
             int pixels = 0);
-  // The remembered instance of `category` nearest to `p_world` within the
-  // radius, not one of `present` (those in this frame); 0 when none. Each
-  // instance is where it was last seen and where it was seen on the most
-  // pixels (its most complete view: a part seen at the image border has its
-  // centre off the instance's).
-  std::uint32_t match(const std::string& category, const Eigen::Vector3d& p_world,
-                      const std::set<std::uint32_t>& present) const;
   // Which remembered instance of its class, not in this frame (`present`
-  // and the claims' ids), each claim takes over: nearest pairs first, within
+  // and the claims' ids), each claim takes over. Each remembered instance is
+  // where it was last seen and where it was seen on the most pixels (its most
+  // complete view: a part seen at the image border has its centre off the
+  // instance's); a claim's distance is to the nearer. Nearest pairs first, within
   // the radius, each remembered instance to one claim at most. A new id may
   // take one over; an older id only when it has jumped: it is more than half
   // the radius and more than twice as far from where its own id was last
