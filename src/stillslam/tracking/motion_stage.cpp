@@ -27,6 +27,20 @@ constexpr int kBoxPad = 2 * (BriefPattern::kRadius + 1);
 // Fewer sampled pixels of an object (a sliver at the border): no verdict from depth.
 constexpr int kMinFreeSpaceSamples = 30;
 
+// `by_id` with each id replaced by to(id) (a map's values or a set's ids kept).
+template <class ById, class To>
+ById relabelled(const ById& by_id, const To& to) {
+  ById out;
+  for (const auto& entry : by_id) {
+    if constexpr (requires { entry.second; }) {
+      out[to(entry.first)] = entry.second;
+    } else {
+      out.insert(to(entry));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 MotionStage::MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std::vector<int> dynamic_class_ids,
@@ -255,21 +269,11 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
         if (labels_(v, u) != 0) labels_(v, u) = static_cast<int>(to(static_cast<std::uint32_t>(labels_(v, u))));
       }
     }
-    std::map<std::uint32_t, std::string> categories;
-    for (const auto& [id, category] : categories_) categories[to(id)] = category;
-    categories_ = std::move(categories);
-    std::map<std::uint32_t, int> pixels;
-    for (const auto& [id, n] : mask_pixels_) pixels[to(id)] = n;
-    mask_pixels_ = std::move(pixels);
-    std::map<std::uint32_t, std::uint32_t> stable_of;
-    for (const auto& [id, stable] : stable_of_) stable_of[to(id)] = stable;
-    stable_of_ = std::move(stable_of);
-    std::set<std::uint32_t> dynamic_ids;
-    for (std::uint32_t id : dynamic_ids_) dynamic_ids.insert(to(id));
-    dynamic_ids_ = std::move(dynamic_ids);
-    std::map<std::uint32_t, Eigen::Vector3d> relabelled;
-    for (const auto& [id, p] : places) relabelled[to(id)] = p;
-    places = std::move(relabelled);
+    categories_ = relabelled(categories_, to);
+    mask_pixels_ = relabelled(mask_pixels_, to);
+    stable_of_ = relabelled(stable_of_, to);
+    dynamic_ids_ = relabelled(dynamic_ids_, to);
+    places = relabelled(places, to);
   }
   for (const auto& [id, category] : categories_) {
     ++age_[stable_of_[id]];
