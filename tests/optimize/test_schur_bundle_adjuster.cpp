@@ -2,8 +2,11 @@
 // against the Ceres path on the same synthesized problems.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <string>
 
 #include "geometry/synthetic_scene.h"
@@ -289,6 +292,40 @@ TEST(SchurBundleAdjuster, LargeProblemsGoToCeres) {
   const BundleAdjustmentResult h = run(cam, s, o);
   EXPECT_EQ(h.final_cost, c.final_cost);
   EXPECT_EQ(h.points, c.points);
+}
+
+// The point blocks' inverses: bit for bit what LLT::solve(Identity) gives
+// (the BA's results must not move), on well and badly conditioned matrices.
+TEST(SchurBundleAdjuster, CholeskyInverseIsBitIdenticalToEigens) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int checked = 0;
+  for (int n = 0; n < 2000; ++n) {
+    Eigen::Matrix3d A;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) A(r, c) = u(rng);
+    }
+    const double scale = std::pow(10.0, 8.0 * u(rng));  // 1e-8 .. 1e8
+    Eigen::Matrix3d V = scale * (A * A.transpose());
+    for (int d = 0; d < 3; ++d) V(d, d) += scale * 1e-6 * (n % 7);
+    const Eigen::LLT<Eigen::Matrix3d> llt(V);
+    if (llt.info() != Eigen::Success) continue;
+    const Eigen::Matrix3d expected = llt.solve(Eigen::Matrix3d::Identity());
+    const Eigen::Matrix3d got = inverse_from_cholesky(llt.matrixL());
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(std::memcmp(&got(r, c), &expected(r, c), sizeof(double)), 0)
+            << "matrix " << n << " entry (" << r << ", " << c << "): " << got(r, c) << " vs " << expected(r, c);
+      }
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 1900);
+  // And it is an inverse.
+  Eigen::Matrix3d V;
+  V << 4, 1, 0.5, 1, 3, 0.25, 0.5, 0.25, 2;
+  const Eigen::Matrix3d inv = inverse_from_cholesky(Eigen::LLT<Eigen::Matrix3d>(V).matrixL());
+  EXPECT_LT((inv * V - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-14);
 }
 
 }  // namespace

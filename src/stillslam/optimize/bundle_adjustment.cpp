@@ -70,32 +70,44 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   // Keyframes that take part in some pass; the others come back bit-exact.
   std::vector<bool> keyframe_moved(keyframes.size(), false);
   std::vector<bool> stereo(n_obs);
+  for (std::size_t i = 0; i < n_obs; ++i) stereo[i] = observations[i].u_right >= 0 && k.bf > 0;
   // costs: the whole observation (or, split, its left-image part); right_costs:
-  // the right-image row of a split stereo observation.
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n_obs), right_costs(n_obs);
-  for (std::size_t i = 0; i < n_obs; ++i) {
-    const BaObservation& o = observations[i];
-    stereo[i] = o.u_right >= 0 && k.bf > 0;
-    if (stereo[i] && !options.split_stereo) {
-      costs[i] = std::make_unique<StereoBaCost>(k, o.pixel, o.u_right, o.inv_sigma2);
-    } else {
-      costs[i] = std::make_unique<MonoBaCost>(k, o.pixel, o.inv_sigma2);
+  // the right-image row of a split stereo observation. Made by the first pass
+  // that goes to Ceres (the Schur passes do not use them).
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs, right_costs;
+  auto make_costs = [&] {
+    if (!costs.empty()) return;
+    costs.resize(n_obs);
+    right_costs.resize(n_obs);
+    for (std::size_t i = 0; i < n_obs; ++i) {
+      const BaObservation& o = observations[i];
+      if (stereo[i] && !options.split_stereo) {
+        costs[i] = std::make_unique<StereoBaCost>(k, o.pixel, o.u_right, o.inv_sigma2);
+      } else {
+        costs[i] = std::make_unique<MonoBaCost>(k, o.pixel, o.inv_sigma2);
+      }
+      if (stereo[i] && options.split_stereo) {
+        right_costs[i] = std::make_unique<StereoRightBaCost>(k, o.u_right, o.inv_sigma2);
+      }
     }
-    if (stereo[i] && options.split_stereo) {
-      right_costs[i] = std::make_unique<StereoRightBaCost>(k, o.u_right, o.inv_sigma2);
-    }
-  }
+  };
 
   BundleAdjustmentResult result;
   result.observation_inlier.assign(n_obs, false);
 
+  // The poses as transforms, converted once per keyframe (not per observation).
+  std::vector<Eigen::Isometry3d> T_cam_world(keyframes.size());
+  auto convert_poses = [&] {
+    for (std::size_t i = 0; i < keyframes.size(); ++i) T_cam_world[i] = from_pose_params(poses[i].data());
+  };
   // Classifies every observation against the current state; returns the
   // cost 0.5 * sum chi2 over the inliers (or over all evaluable ones).
   auto classify = [&](bool all_count) {
+    convert_poses();
     double cost = 0;
     for (std::size_t i = 0; i < n_obs; ++i) {
       const BaObservation& o = observations[i];
-      const ReprojectionCheck c = check_reprojection(k, from_pose_params(poses[o.keyframe].data()), xyz[o.point],
+      const ReprojectionCheck c = check_reprojection(k, T_cam_world[o.keyframe], xyz[o.point],
                                                      o.pixel, stereo[i] ? o.u_right : -1.0, o.inv_sigma2);
       const bool in_front = c.in_front();
       result.observation_inlier[i] = in_front && c.chi2 <= (stereo[i] ? options.chi2_stereo : options.chi2_mono);
@@ -108,7 +120,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   std::vector<bool> active(n_obs);
   for (std::size_t i = 0; i < n_obs; ++i) {
     const BaObservation& o = observations[i];
-    active[i] = (from_pose_params(poses[o.keyframe].data()) * xyz[o.point]).z() >= kMinCameraDepth;
+    active[i] = (T_cam_world[o.keyframe] * xyz[o.point]).z() >= kMinCameraDepth;
   }
 
   ceres::HuberLoss huber_mono(std::sqrt(options.chi2_mono));
@@ -130,6 +142,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
       if (r.usable) result.applied_steps += r.applied_steps;
       return;
     }
+    make_costs();
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;

@@ -36,6 +36,30 @@ inline double clamp_diagonal(double d) { return std::clamp(d, kMinDiagonal, kMax
 
 }  // namespace schur_ba
 
+Eigen::Matrix3d inverse_from_cholesky(const Eigen::Matrix3d& L) {
+  Eigen::Matrix3d X = Eigen::Matrix3d::Identity();
+  // L X = I, column by column: row i scaled by 1 / L(i, i), then eliminated below.
+  for (int i = 0; i < 3; ++i) {
+    const double a = 1.0 / L(i, i);
+    for (int j = 0; j < 3; ++j) {
+      X(i, j) *= a;
+      const double b = X(i, j);
+      for (int r = i + 1; r < 3; ++r) X(r, j) -= b * L(r, i);
+    }
+  }
+  // L^T X = Y, last row first: the dot product over the rows solved so far.
+  for (int k = 0; k < 3; ++k) {
+    const int i = 2 - k;
+    const double a = 1.0 / L(i, i);
+    for (int j = 0; j < 3; ++j) {
+      double b = 0;
+      for (int r = 0; r < k; ++r) b += L(i + 1 + r, i) * X(i + 1 + r, j);
+      X(i, j) = (X(i, j) - b) * a;
+    }
+  }
+  return X;
+}
+
 SchurBundleAdjuster::SchurBundleAdjuster(const Intrinsics& k, const std::vector<BaKeyframe>& keyframes,
                                          const std::vector<BaObservation>& observations,
                                          const std::vector<bool>& stereo)
@@ -87,6 +111,8 @@ void SchurBundleAdjuster::setup(const std::vector<bool>& active, std::size_t num
   for (std::size_t i = 0; i < observations_.size(); ++i) {
     if (active[i]) point_obs_[fill[static_cast<std::size_t>(point_index_[observations_[i].point])]++] = i;
   }
+  entry_pose_.resize(point_obs_.size());
+  for (std::size_t e = 0; e < point_obs_.size(); ++e) entry_pose_[e] = pose_index_[observations_[point_obs_[e]].keyframe];
   U_.resize(nf);
   gc_.resize(nf);
   V_.resize(np);
@@ -161,7 +187,7 @@ bool SchurBundleAdjuster::evaluate(const std::vector<PoseParams>& poses, const s
       const Eigen::Matrix3d Jq = Jp * R;  // d/d point
       V.noalias() += Jq.transpose() * Jq;
       gp.noalias() += Jq.transpose() * r;
-      const int a = pose_index_[o.keyframe];
+      const int a = entry_pose_[e];
       if (a < 0) continue;
       Eigen::Matrix<double, 3, 6> Jc;  // d/d [omega, v] of the left update: Jp [-[p]x, I]
       Jc.leftCols<3>().noalias() = -Jp * skew(p);
@@ -200,14 +226,14 @@ bool SchurBundleAdjuster::solve(double mu) {
     for (int d = 0; d < 3; ++d) Vd(d, d) += mu * clamp_diagonal(V_[j](d, d));
     const Eigen::LLT<Eigen::Matrix3d> llt(Vd);
     if (llt.info() != Eigen::Success) return false;
-    Vinv_[j] = llt.solve(Eigen::Matrix3d::Identity());
+    Vinv_[j] = inverse_from_cholesky(llt.matrixL());
     for (std::size_t e = point_start_[j]; e < point_start_[j + 1]; ++e) {
-      const int a = pose_index_[observations_[point_obs_[e]].keyframe];
+      const int a = entry_pose_[e];
       if (a < 0) continue;
       Y_[e].noalias() = W_[e] * Vinv_[j];
       rhs_.segment<6>(6 * a).noalias() += Y_[e] * gp_[j];
       for (std::size_t f = point_start_[j]; f < point_start_[j + 1]; ++f) {
-        const int b = pose_index_[observations_[point_obs_[f]].keyframe];
+        const int b = entry_pose_[f];
         if (b < 0 || b > a) continue;
         S_.block<6, 6>(6 * a, 6 * b).noalias() -= Y_[e] * W_[f].transpose();
       }
@@ -237,7 +263,7 @@ bool SchurBundleAdjuster::solve(double mu) {
   for (std::size_t j = 0; j < used_points_.size(); ++j) {
     Eigen::Vector3d b = -gp_[j];
     for (std::size_t e = point_start_[j]; e < point_start_[j + 1]; ++e) {
-      const int a = pose_index_[observations_[point_obs_[e]].keyframe];
+      const int a = entry_pose_[e];
       if (a >= 0) b.noalias() -= W_[e].transpose() * dc_.segment<6>(6 * a);
     }
     dp_[j].noalias() = Vinv_[j] * b;

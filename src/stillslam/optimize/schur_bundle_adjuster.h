@@ -25,6 +25,13 @@ namespace stillslam {
 // (a 384 x 384 Cholesky); bundle_adjust() hands larger problems to Ceres.
 inline constexpr int kSchurMaxFreeKeyframes = 64;
 
+// The inverse of a symmetric positive definite 3x3 matrix from its Cholesky
+// factor L (lower, as Eigen::LLT::matrixL()): the same operations, in the same
+// order, as Eigen 3.4's LLT::solve(Identity) (its triangular solver for
+// matrix right-hand sides, column-major L then row-major L^T), so the result
+// is bit-identical, without that solver's blocking and packing overhead.
+Eigen::Matrix3d inverse_from_cholesky(const Eigen::Matrix3d& L);
+
 struct SchurPassResult {
   int iterations = 0;     // as Ceres counts them (iteration 0 excluded)
   int applied_steps = 0;  // accepted steps written back to the state
@@ -73,6 +80,7 @@ class SchurBundleAdjuster {
   std::vector<std::size_t> used_points_;  // point of each variable index
   std::vector<std::size_t> point_start_;  // CSR over used_points_: observations per point
   std::vector<std::size_t> point_obs_;
+  std::vector<int> entry_pose_;           // pose_index_ of each entry's keyframe, per entry of point_obs_
 
   // Per linearization.
   std::vector<Eigen::Matrix<double, 6, 6>> U_;
