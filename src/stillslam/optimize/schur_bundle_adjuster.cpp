@@ -112,7 +112,9 @@ void SchurBundleAdjuster::setup(const std::vector<bool>& active, std::size_t num
     if (active[i]) point_obs_[fill[static_cast<std::size_t>(point_index_[observations_[i].point])]++] = i;
   }
   entry_pose_.resize(point_obs_.size());
-  for (std::size_t e = 0; e < point_obs_.size(); ++e) entry_pose_[e] = pose_index_[observations_[point_obs_[e]].keyframe];
+  for (std::size_t e = 0; e < point_obs_.size(); ++e) {
+    entry_pose_[e] = pose_index_[observations_[point_obs_[e]].keyframe];
+  }
   U_.resize(nf);
   gc_.resize(nf);
   V_.resize(np);
