@@ -77,6 +77,8 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.initMaxReprojectionError", "0", "is 0: must be in (0, 100]"},
     {"Tracking.initMaxReprojectionError", "1e4", "is 10000: must be in (0, 100]"},
     {"Tracking.initMaxReprojectionErrorUnmasked", "0", "is 0: must be in (0, 100]"},
+    {"Tracking.initMovingFactorUnmasked", "0.5", "is 0.5: must be in [1, 100]"},
+    {"Tracking.initMovingFactorUnmasked", "101", "is 101: must be in [1, 100]"},
     {"Tracking.maxFramesBetweenKeyframes", "-1", "is -1: must be in [0, 100000]"},
     {"Tracking.maxFramesBetweenKeyframes", "1e9", "is 1e+09: must be in [0, 100000]"},
     {"Tracking.minFramesBetweenKeyframes", "-1", "is -1: must be in [0, 100000]"},

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "map/synthetic_scene.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/tracking/initial_view_check.h"
 
 namespace stillslam {
@@ -146,7 +147,7 @@ Frame with_levels(const Frame& f, const std::vector<Eigen::Vector2d>& shift_px, 
 // bound: static points detected at level 6 (scale 2.99) and 2.5 px off in the
 // next frame are neither confirmed nor left out (another frame may confirm
 // them), the same offset at level 0 leaves them out, and movers are left out
-// at any level.
+// at any level; a moving factor widens the moving bound alone.
 TEST(InitialViewCheck, UnmaskedMovingBoundScalesWithThePyramidLevel) {
   test::SyntheticScene scene(1500);
   const std::vector<std::size_t> movers = first_points(scene, 0.2);
@@ -193,6 +194,21 @@ TEST(InitialViewCheck, UnmaskedMovingBoundScalesWithThePyramidLevel) {
   EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);
   EXPECT_LT(n[Off][1], 0.1 * n[Off][0]);
   EXPECT_LT(n[Mover][1], 0.02 * n[Mover][0]);
+
+  // moving_factor_unmasked 3 widens the moving bound at level 0 to 3 px: the
+  // points 2.5 px off stay in (still not confirmed), the movers still go.
+  InitialViewCheckOptions wide;
+  wide.moving_factor_unmasked = 3;
+  const InitialViewCheck widened = check_initial_view(first, with_levels(next_exact, off, 0), wide);
+  ASSERT_TRUE(widened.accepted) << widened.reason;
+  n = count(widened);
+  EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);
+  EXPECT_GT(n[Off][1], 0.9 * n[Off][0]);
+  EXPECT_EQ(n[Off][2], 0);
+  EXPECT_LT(n[Mover][1], 0.02 * n[Mover][0]);
+  EXPECT_EQ(n[Mover][2], 0);
+  wide.moving_factor_unmasked = 0.5;
+  EXPECT_THROW(wide.check(), OptionError);
 }
 
 // Movers each going their own way (limbs, several people): no motion holds

@@ -25,6 +25,8 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
               "InitialViewCheckOptions.max_reprojection_error_px", {0, 100, true});
   keys.number("initMaxReprojectionErrorUnmasked", view.max_reprojection_error_unmasked_px,
               "InitialViewCheckOptions.max_reprojection_error_unmasked_px", {0, 100, true});
+  keys.number("initMovingFactorUnmasked", view.moving_factor_unmasked, "InitialViewCheckOptions.moving_factor_unmasked",
+              {1, 100});
   // Keyframe decision.
   keys.integer("maxFramesBetweenKeyframes", tracker.max_frames_between_keyframes,
                "TrackerOptions.max_frames_between_keyframes", {0, 100000});

@@ -75,9 +75,10 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
 
   // Without masks a match confirms its point only within the level-0 bound
   // (the RANSAC's), but it finds the point moving only beyond a bound scaled
-  // by the coarser of its two keypoints' pyramid levels (as the pose stages
-  // weight errors by sigma^2): a static point detected at a coarse level is a
-  // few pixels off in one frame, not moving.
+  // by moving_factor_unmasked and by the coarser of its two keypoints'
+  // pyramid levels (as the pose stages weight errors by sigma^2): a static
+  // point detected at a coarse level is a few pixels off in one frame, not
+  // moving.
   std::vector<bool> agrees = motion.inlier;
   if (unmasked && motion.success) {
     const ScalePyramid& pyramid = first.setup().pyramid;
@@ -85,7 +86,7 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
       const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
       const int level = std::max(first.keypoint(i).octave,
                                  next.keypoint(static_cast<std::size_t>(matches[k].trainIdx)).octave);
-      const double bound = options.max_reprojection_error_unmasked_px *
+      const double bound = options.max_reprojection_error_unmasked_px * options.moving_factor_unmasked *
                            pyramid.scale[static_cast<std::size_t>(std::clamp(level, 0, pyramid.n_levels - 1))];
       const Eigen::Vector3d in_next = motion.T_cam_world * points[k];
       agrees[k] = in_next.z() > 0 && (camera.project(in_next) - pixels[k]).norm() <= bound;
@@ -115,6 +116,7 @@ void InitialViewCheckOptions::check() const {
   at_least("InitialViewCheckOptions.min_matches", min_matches, 1);
   above("InitialViewCheckOptions.max_reprojection_error_px", max_reprojection_error_px, 0);
   above("InitialViewCheckOptions.max_reprojection_error_unmasked_px", max_reprojection_error_unmasked_px, 0);
+  in_range("InitialViewCheckOptions.moving_factor_unmasked", moving_factor_unmasked, 1, 100);
 }
 
 }  // namespace stillslam
