@@ -11,7 +11,9 @@
 // Masked instances are still watched through a small set of features
 // extracted inside the mask and kept apart from tracking. An object whose
 // matched features give no verdict (too few: a plain chair) is judged from
-// depth instead (free_space_check.h, Motion.freeSpaceShare).
+// depth instead (free_space_check.h, Motion.freeSpaceShare): where it is now
+// against an earlier view, and with Motion.freeSpaceVacated also where it was
+// then against this view (the share of its old place it has left).
 //
 // An instance that comes back under a new id (it left the view, was hidden,
 // or its mask changed too much) where one of its class was last seen takes
