@@ -84,6 +84,33 @@ TEST(MotionSettings, FreeSpaceShareBinds) {
   EXPECT_NE(e.find("Motion.freeSpaceShare"), std::string::npos) << e;
 }
 
+TEST(MotionSettings, DepthCheckAndMatchWindowKeysBind) {
+  TempDir dir;
+  const Settings defaults = load_settings(dir.write("a.yaml", kBase));
+  EXPECT_EQ(defaults.motion.free_space_frames, 0);
+  EXPECT_EQ(defaults.motion.free_space_span(), defaults.motion.span);
+  EXPECT_FALSE(defaults.motion.free_space.count_nearer);
+  EXPECT_FALSE(defaults.motion.free_space_vacated);
+  EXPECT_DOUBLE_EQ(defaults.motion.match_window_px, 0);
+  EXPECT_DOUBLE_EQ(defaults.motion.check_options().window_px, 0);
+  const Settings s = load_settings(dir.write(
+      "b.yaml", kBase + "Motion.freeSpaceFrames: 18\nMotion.freeSpaceNearer: 1\nMotion.matchWindowPx: 96\n"
+                        "Motion.freeSpaceVacated: 1\n"));
+  EXPECT_TRUE(s.motion.free_space_vacated);
+  EXPECT_EQ(s.motion.free_space_frames, 18);
+  EXPECT_EQ(s.motion.free_space_span(), 18);
+  EXPECT_TRUE(s.motion.free_space.count_nearer);
+  EXPECT_DOUBLE_EQ(s.motion.match_window_px, 96);
+  EXPECT_DOUBLE_EQ(s.motion.check_options().window_px, 96);
+  // Range rows: each bad value names its key.
+  for (const std::string bad : {"Motion.freeSpaceFrames: 101\n", "Motion.freeSpaceFrames: -1\n",
+                                "Motion.freeSpaceNearer: 2\n", "Motion.freeSpaceVacated: 2\n", "Motion.matchWindowPx: -1\n",
+                                "Motion.matchWindowPx: 10001\n"}) {
+    const std::string e = test::settings_error(dir, kBase + bad);
+    EXPECT_NE(e.find(bad.substr(0, bad.find(':'))), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST(MotionSettings, SparseViewKeysBind) {
   TempDir dir;
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));

@@ -105,6 +105,49 @@ TEST(InstanceMotionCheck, WithoutDepthTheEpipolarResidualStillSeesCrossingMotion
   EXPECT_EQ(last.instances[1].verdict, MotionVerdict::Disagrees);
 }
 
+// Matching only within a window around each earlier feature's predicted
+// position (InstanceMotionCheckOptions::window_px) finds the same matches as
+// all pairs while the motion stays inside it (with and without depth), and
+// drops the matches of an instance that moved farther than the window.
+TEST(InstanceMotionCheck, MatchingInAWindowFindsWhatAllPairsFind) {
+  std::mt19937 rng(7);
+  std::vector<ScenePoint> points = scene(rng);
+  const auto residuals = [&](double window, bool with_depth, const std::vector<ScenePoint>& pts) {
+    InstanceMotionCheckOptions o;
+    o.window_px = window;
+    InstanceMotionCheck check(camera(), o);
+    std::mt19937 noise_rng(11);
+    MotionCheckResult last;
+    for (int k = 0; k < 8; ++k) {
+      MotionCheckFrame f = frame_at(k, pts, noise_rng, 0.5);
+      if (!with_depth) std::fill(f.depth.begin(), f.depth.end(), 0.f);
+      last = check.add(std::move(f));
+    }
+    EXPECT_TRUE(last.compared);
+    return last;
+  };
+  for (const bool with_depth : {true, false}) {
+    SCOPED_TRACE(with_depth);
+    const MotionCheckResult all = residuals(0, with_depth, points);
+    const MotionCheckResult window = residuals(40, with_depth, points);
+    EXPECT_EQ(all.background_matches, 200);
+    EXPECT_EQ(window.background_residuals, all.background_residuals);
+    EXPECT_EQ(window.residuals, all.residuals);
+  }
+  // The slow walker sped up to 2 m/s: ~100 px over the 6 frames at 2 m.
+  for (ScenePoint& p : points) {
+    if (p.instance == 2) p.velocity = {2.0 / 30, 0, 0};
+  }
+  const MotionCheckResult all = residuals(0, true, points), window = residuals(40, true, points);
+  ASSERT_EQ(all.residuals.at(2).size(), 30u);
+  EXPECT_GT(all.residuals.at(2).front(), 80.0);
+  EXPECT_EQ(window.residuals.count(2), 0u);
+  EXPECT_EQ(window.residuals.at(1), all.residuals.at(1));
+  InstanceMotionCheckOptions bad;
+  bad.window_px = -1;
+  EXPECT_THROW(bad.check(), Error);
+}
+
 TEST(InstanceMotionCheck, MismatchedFeatureListsAreAnError) {
   std::mt19937 rng(1);
   InstanceMotionCheck check(camera());

@@ -305,6 +305,18 @@ TEST(MotionStage, PlainBoxFoundMovingFromDepth) {
   plain.speed = -kShiftPx;
   const StageRun still = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
   for (int k = 0; k < 20; ++k) EXPECT_EQ(still.stats[k].moving_instances, 0) << k;
+  // Also judged the other way round (Motion.freeSpaceVacated) and against the
+  // view 12 frames back (Motion.freeSpaceFrames): the pushed box is found at
+  // the first comparison, the still one never.
+  o.free_space_vacated = true;
+  o.free_space_frames = 12;
+  plain.speed = 10;
+  const StageRun both = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k <= 12; ++k) EXPECT_EQ(both.stats[k].moving_instances, 0) << k;
+  for (int k = 13; k < 20; ++k) EXPECT_EQ(both.stats[k].moving_instances, 1) << k;
+  plain.speed = -kShiftPx;
+  const StageRun both_still = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(both_still.stats[k].moving_instances, 0) << k;
 }
 
 TEST(MotionStage, OptionsOutOfRangeNameTheField) {

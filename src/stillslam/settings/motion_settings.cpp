@@ -9,6 +9,7 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.integer("instanceFeatures", options.instance_features, "MotionOptions.instance_features", {1, 10000});
   keys.flag("watchObjects", options.watch_objects, "MotionOptions.watch_objects");
   keys.integer("span", options.span, "MotionOptions.span", {1, 100});
+  keys.number("matchWindowPx", options.match_window_px, "MotionOptions.match_window_px", {0, 10000});
   keys.integer("personFrames", options.person_frames, "MotionOptions.person_frames", {1, 10000});
   keys.integer("defaultFrames", options.default_frames, "MotionOptions.default_frames", {1, 10000});
   keys.number("minIou", options.min_iou, "MotionOptions.min_iou", {0, 1, true});
@@ -17,6 +18,9 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.integer("keptPointFrames", options.kept_point_frames, "MotionOptions.kept_point_frames", {0, 100000});
   keys.flag("keptPointsOutOfPose", options.kept_points_out_of_pose, "MotionOptions.kept_points_out_of_pose");
   keys.number("freeSpaceShare", options.free_space_share, "MotionOptions.free_space_share", {0, 1});
+  keys.integer("freeSpaceFrames", options.free_space_frames, "MotionOptions.free_space_frames", {0, 100});
+  keys.flag("freeSpaceVacated", options.free_space_vacated, "MotionOptions.free_space_vacated");
+  keys.flag("freeSpaceNearer", options.free_space.count_nearer, "FreeSpaceOptions.count_nearer");
   keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
   keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");

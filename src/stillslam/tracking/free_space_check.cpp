@@ -20,9 +20,11 @@ std::map<std::uint32_t, FreeSpaceCount> count_seen_through(const PinholeCamera& 
                                                            const std::set<std::uint32_t>& ids,
                                                            const Eigen::Isometry3d& T_earlier_current,
                                                            const cv::Mat& earlier_depth,
-                                                           const FreeSpaceOptions& options) {
+                                                           const FreeSpaceOptions& options,
+                                                           const cv::Mat1b& earlier_occluders) {
   STILLSLAM_CHECK(depth.type() == CV_32F && earlier_depth.type() == CV_32F, "depth images must be CV_32F");
   STILLSLAM_CHECK(depth.size() == labels.size() && earlier_depth.size() == labels.size(), "images of one size");
+  STILLSLAM_CHECK(earlier_occluders.empty() || earlier_occluders.size() == labels.size(), "images of one size");
   std::map<std::uint32_t, FreeSpaceCount> out;
   for (std::uint32_t id : ids) out[id];
   const int step = std::max(1, options.step_px);
@@ -41,8 +43,11 @@ std::map<std::uint32_t, FreeSpaceCount> count_seen_through(const PinholeCamera& 
       if (qu < 0 || qv < 0 || qu >= earlier_depth.cols || qv >= earlier_depth.rows) continue;
       const float seen = earlier_depth.at<float>(qv, qu);
       if (!(seen > 0)) continue;
+      if (!earlier_occluders.empty() && earlier_occluders(qv, qu)) continue;
       ++it->second.samples;
-      it->second.seen_through += seen > p.z() + std::max(options.min_gap_m, options.gap_share_of_depth * p.z());
+      const double gap = std::max(options.min_gap_m, options.gap_share_of_depth * p.z());
+      it->second.seen_through += seen > p.z() + gap;
+      it->second.seen_nearer += options.count_nearer && seen < p.z() - gap;
     }
   }
   return out;

@@ -1,17 +1,96 @@
 #include "stillslam/tracking/instance_motion_check.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
+#include "stillslam/features/descriptor.h"
 #include "stillslam/features/descriptor_matcher.h"
 #include "stillslam/tracking/motion_residual.h"
 
 namespace stillslam {
+
+namespace {
+
+struct Best {
+  int index = -1;
+  int distance = std::numeric_limits<int>::max();
+  int second = std::numeric_limits<int>::max();
+  void offer(int i, int d) {
+    if (d < distance) {
+      second = distance;
+      distance = d;
+      index = i;
+    } else if (d < second) {
+      second = d;
+    }
+  }
+};
+
+// match_descriptors(cur, prev) with each pair offered only when prev's
+// predicted pixel in cur lies within `window` px of cur's on both axes: the
+// same ratio test and cross check, over the pairs of a grid of cur's features.
+std::vector<cv::DMatch> match_in_window(const PinholeCamera& camera, const Eigen::Isometry3d& T_cur_prev,
+                                        const MotionCheckFrame& cur, const MotionCheckFrame& prev, double window,
+                                        const DescriptorMatchOptions& options) {
+  std::vector<cv::DMatch> matches;
+  if (cur.pixels.empty() || prev.pixels.empty()) return matches;
+  double max_u = 0, max_v = 0;
+  for (const Eigen::Vector2d& p : cur.pixels) {
+    max_u = std::max(max_u, p.x());
+    max_v = std::max(max_v, p.y());
+  }
+  const int cols = static_cast<int>(max_u / window) + 1, rows = static_cast<int>(max_v / window) + 1;
+  std::vector<std::vector<int>> grid(static_cast<std::size_t>(cols * rows));
+  const auto cell = [window](double x) { return static_cast<int>(std::floor(x / window)); };
+  for (std::size_t c = 0; c < cur.pixels.size(); ++c) {
+    const int cu = std::max(0, cell(cur.pixels[c].x())), cv_ = std::max(0, cell(cur.pixels[c].y()));
+    grid[static_cast<std::size_t>(cv_ * cols + cu)].push_back(static_cast<int>(c));
+  }
+  std::vector<Best> best_cur(cur.pixels.size()), best_prev(prev.pixels.size());
+  for (std::size_t p = 0; p < prev.pixels.size(); ++p) {
+    const Eigen::Vector3d ray = prev.depth[p] > 0 ? T_cur_prev * camera.unproject(prev.pixels[p], prev.depth[p])
+                                                  : T_cur_prev.linear() * camera.unproject(prev.pixels[p], 1.0);
+    if (ray.z() <= 1e-6) continue;
+    const Eigen::Vector2d q = camera.project(ray);
+    const int u0 = std::max(0, cell(q.x() - window)), u1 = std::min(cols - 1, cell(q.x() + window));
+    const int v0 = std::max(0, cell(q.y() - window)), v1 = std::min(rows - 1, cell(q.y() + window));
+    const std::uint8_t* b = prev.descriptors.ptr<std::uint8_t>(static_cast<int>(p));
+    for (int v = v0; v <= v1; ++v) {
+      for (int u = u0; u <= u1; ++u) {
+        for (int c : grid[static_cast<std::size_t>(v * cols + u)]) {
+          const Eigen::Vector2d& x = cur.pixels[static_cast<std::size_t>(c)];
+          if (std::abs(x.x() - q.x()) > window || std::abs(x.y() - q.y()) > window) continue;
+          const int d = descriptor_distance(cur.descriptors.ptr<std::uint8_t>(c), b);
+          best_cur[static_cast<std::size_t>(c)].offer(static_cast<int>(p), d);
+          best_prev[p].offer(c, d);
+        }
+      }
+    }
+  }
+  for (std::size_t c = 0; c < best_cur.size(); ++c) {
+    const Best& b = best_cur[c];
+    if (b.index < 0 || b.distance > options.max_distance) continue;
+    if (options.ratio < 1.f && b.second != std::numeric_limits<int>::max() &&
+        static_cast<float>(b.distance) >= options.ratio * static_cast<float>(b.second)) {
+      continue;
+    }
+    if (options.cross_check && best_prev[static_cast<std::size_t>(b.index)].index != static_cast<int>(c)) continue;
+    matches.emplace_back(static_cast<int>(c), b.index, static_cast<float>(b.distance));
+  }
+  return matches;
+}
+
+}  // namespace
 
 void InstanceMotionCheckOptions::check() const {
   using namespace option_check;
   at_least("InstanceMotionCheckOptions.span", span, 1);
   in_range("InstanceMotionCheckOptions.max_hamming", max_hamming, 0, 256);
   in_range("InstanceMotionCheckOptions.ratio", ratio, 0.01, 1);
+  in_range("InstanceMotionCheckOptions.window_px", window_px, 0, 10000);
   evidence.check();
 }
 
@@ -55,7 +134,10 @@ MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
   DescriptorMatchOptions match;
   match.max_distance = options_.max_hamming;
   match.ratio = options_.ratio;
-  for (const cv::DMatch& m : match_descriptors(cur.descriptors, prev.descriptors, match)) {
+  const std::vector<cv::DMatch> matches =
+      options_.window_px > 0 ? match_in_window(camera_, T_cur_prev, cur, prev, options_.window_px, match)
+                             : match_descriptors(cur.descriptors, prev.descriptors, match);
+  for (const cv::DMatch& m : matches) {
     const std::size_t c = static_cast<std::size_t>(m.queryIdx), p = static_cast<std::size_t>(m.trainIdx);
     // Across an instance border, or from an instance to the background: not
     // comparable. From the background to an instance is: an object nobody

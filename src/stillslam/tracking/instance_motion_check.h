@@ -29,6 +29,10 @@ struct InstanceMotionCheckOptions {
   int span = 6;                // frames between the two views compared
   int max_hamming = 50;        // descriptor distance of a match
   float ratio = 0.8f;          // best < ratio * second best
+  // A feature is matched only with the earlier frame's features whose
+  // position predicted by the camera motion (with their depth, else at
+  // infinity) lies within this many pixels (each axis); 0: with all of them.
+  double window_px = 0;
   MotionEvidenceOptions evidence;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;

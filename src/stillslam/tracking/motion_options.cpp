@@ -17,6 +17,8 @@ void MotionOptions::check() const {
   in_range("MotionOptions.object_moving_factor", object_moving_factor, 2, 100);
   in_range("MotionOptions.object_moving_floor_px", object_moving_floor_px, 1.5, 100);
   in_range("MotionOptions.free_space_share", free_space_share, 0, 1);
+  in_range("MotionOptions.match_window_px", match_window_px, 0, 10000);
+  in_range("MotionOptions.free_space_frames", free_space_frames, 0, 100);
   free_space.check();
   check_options().check();
   sparse_view.check();
@@ -25,6 +27,7 @@ void MotionOptions::check() const {
 InstanceMotionCheckOptions MotionOptions::check_options() const {
   InstanceMotionCheckOptions o;
   o.span = span;
+  o.window_px = match_window_px;
   o.evidence.default_frames = default_frames;
   o.evidence.frames_by_class["person"] = person_frames;
   o.evidence.object_moving_factor = object_moving_factor;

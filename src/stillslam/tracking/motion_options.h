@@ -19,6 +19,9 @@ struct MotionOptions {
   // are spread over the whole view).
   bool watch_objects = true;
   int span = 6;            // frames between the two views compared
+  // The check matches a feature only with the earlier view's features
+  // predicted within this many pixels of it (0: all pairs).
+  double match_window_px = 0;
   int person_frames = 10;  // agreeing frames a person needs before it is kept as static
   int default_frames = 10; // the same for every other class
   double min_iou = 0.3;    // mask overlap for an instance to keep its id across segmentations
@@ -45,7 +48,20 @@ struct MotionOptions {
   // the bar tried.
   // Off until measured on more renders (bench/README.md, issue #19 session 11).
   double free_space_share = 0;
+  // The view that depth check compares with: this many judged frames
+  // earlier (0: `span`). A slowly pushed chair moves a few centimetres over
+  // 6 frames, less than the check's gap.
+  int free_space_frames = 0;
+  // That check also the other way round (Motion.freeSpaceVacated): the
+  // object's pixels in the earlier view put into this one; the share lying
+  // where this view sees farther is the share of its old place it has left.
+  // An object at the image border moving out of the view shows only its
+  // trailing side, whose new place overlaps the old one.
+  bool free_space_vacated = false;
+  // free_space.count_nearer (Motion.freeSpaceNearer): pixels the earlier view
+  // saw nearer count too, except on the people masked then.
   FreeSpaceOptions free_space;
+  int free_space_span() const { return free_space_frames > 0 ? free_space_frames : span; }
   // A new instance within this distance (world frame) of where one of its
   // class was last seen takes over its evidence (instance_places.h); 0: never.
   double place_radius_m = 0.5;

@@ -294,9 +294,22 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
     depth_history_.clear();
     return;
   }
-  depth_history_.emplace_back(frame.T_cam_world(), depth_);
-  if (static_cast<int>(depth_history_.size()) > options_.span + 1) depth_history_.pop_front();
-  if (static_cast<int>(depth_history_.size()) < options_.span + 1) return;
+  cv::Mat1b people;
+  if (options_.free_space.count_nearer) {
+    people = cv::Mat1b::zeros(labels_.size());
+    for (int v = 0; v < labels_.rows; ++v) {
+      const int* l = labels_.ptr<int>(v);
+      std::uint8_t* out = people.ptr<std::uint8_t>(v);
+      for (int u = 0; u < labels_.cols; ++u) {
+        if (l[u] != 0 && dynamic_ids_.count(static_cast<std::uint32_t>(l[u])) && masked(static_cast<std::uint32_t>(l[u]))) out[u] = 255;
+      }
+    }
+  }
+  depth_history_.push_back({frame.T_cam_world(), depth_, people,
+                            options_.free_space_vacated ? labels_.clone() : cv::Mat1i()});
+  const int frames = options_.free_space_span();
+  if (static_cast<int>(depth_history_.size()) > frames + 1) depth_history_.pop_front();
+  if (static_cast<int>(depth_history_.size()) < frames + 1) return;
   // Objects the matched features gave no verdict this frame.
   std::set<std::uint32_t> ids{0};
   for (const auto& [id, category] : categories_) {
@@ -306,10 +319,21 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
     if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
   }
   if (ids.size() == 1) return;
-  const auto& [T_earlier_world, earlier_depth] = depth_history_.front();
-  const Eigen::Isometry3d T_earlier_current = T_earlier_world * frame.T_cam_world().inverse();
-  const auto counts = count_seen_through(camera_, depth_, labels_, ids, T_earlier_current, earlier_depth,
-                                         options_.free_space);
+  const DepthView& earlier = depth_history_.front();
+  const Eigen::Isometry3d T_earlier_current = earlier.T_cam_world * frame.T_cam_world().inverse();
+  const auto counts = count_seen_through(camera_, depth_, labels_, ids, T_earlier_current, earlier.depth,
+                                         options_.free_space, earlier.people);
+  // The other way round: the object's earlier pixels where this view sees farther (it left them).
+  std::map<std::uint32_t, FreeSpaceCount> vacated;
+  if (options_.free_space_vacated) {
+    FreeSpaceOptions o = options_.free_space;
+    o.count_nearer = false;
+    vacated = count_seen_through(camera_, earlier.depth, earlier.labels, ids, T_earlier_current.inverse(), depth_, o);
+  }
+  for (const auto& [id, c] : vacated) {
+    if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;
+    if (c.share() >= std::max(options_.free_space_share, 3 * vacated.at(0).share())) moving_.insert(id);
+  }
   const double background = counts.at(0).share();
   for (const auto& [id, c] : counts) {
     if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;

@@ -11,7 +11,9 @@
 // Masked instances are still watched through a small set of features
 // extracted inside the mask and kept apart from tracking. An object whose
 // matched features give no verdict (too few: a plain chair) is judged from
-// depth instead (free_space_check.h, Motion.freeSpaceShare).
+// depth instead (free_space_check.h, Motion.freeSpaceShare): where it is now
+// against an earlier view, and with Motion.freeSpaceVacated also where it was
+// then against this view (the share of its old place it has left).
 //
 // An instance that comes back under a new id (it left the view, was hidden,
 // or its mask changed too much) where one of its class was last seen takes
@@ -121,8 +123,15 @@ class MotionStage {
   std::map<std::uint32_t, int> mask_pixels_;              // pixels with depth of each instance
   MotionCheckFrame inside_;              // the features inside the mask (pixels undistorted)
   cv::Mat depth_;                        // this frame's depth image (collect(); empty without one)
-  // The depth images and poses of the last span + 1 judged frames (Motion.freeSpaceShare).
-  std::deque<std::pair<Eigen::Isometry3d, cv::Mat>> depth_history_;
+  // The last free_space_span() + 1 judged frames (Motion.freeSpaceShare):
+  // pose, depth image and, with Motion.freeSpaceNearer, the masked people's pixels.
+  struct DepthView {
+    Eigen::Isometry3d T_cam_world;
+    cv::Mat depth;
+    cv::Mat1b people;
+    cv::Mat1i labels;  // with Motion.freeSpaceVacated: the instances then (evidence ids)
+  };
+  std::deque<DepthView> depth_history_;
 };
 
 }  // namespace stillslam
