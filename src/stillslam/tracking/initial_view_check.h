@@ -42,8 +42,8 @@ struct InitialViewCheckOptions {
   // Without masks a match finds its keypoint moving only beyond
   // max_reprojection_error_unmasked_px x this factor x the scale of the
   // coarser keypoint's pyramid level (confirming stays within the unscaled
-  // bound). 1: session 13's rule; 2.45 = sqrt(5.991), ORB-SLAM3's 95 %
-  // chi-square test with the bound as one sigma.
+  // bound). 2.45 = sqrt(5.991) would be ORB-SLAM3's 95 % chi-square test
+  // with the bound as one sigma.
   double moving_factor_unmasked = 1.0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
