@@ -94,7 +94,9 @@ TEST(KeyframeCheck, WithCullNewPointsThePointsMadeAfterItGoToo) {
   EXPECT_EQ(r.unlinked, s.inside[0]);
   for (std::size_t i = 0; i < s.f1.size(); ++i) {
     EXPECT_EQ(s.points[i]->is_bad(), i % 3 != 0 && s.on(i)) << i;
-    if (i % 3 == 0) EXPECT_EQ(s.points[i]->is_observed_by(s.checked.get()), !s.on(i)) << i;
+    if (i % 3 == 0) {
+      EXPECT_EQ(s.points[i]->is_observed_by(s.checked.get()), !s.on(i)) << i;
+    }
   }
 }
 
