@@ -38,6 +38,17 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_FALSE(d.segmentation.provisional_points);
   const Settings p = load_settings(dir.write("p.yaml", kTum + "Segmentation.provisionalPoints: 1\n"));
   EXPECT_TRUE(p.segmentation.provisional_points);
+  EXPECT_FALSE(d.segmentation.start_check);
+  EXPECT_FALSE(d.segmentation.keyframe_check);
+  EXPECT_FALSE(d.segmentation.check_new_points);
+  const Settings c = load_settings(dir.write(
+      "c.yaml", kTum + "Segmentation.startCheck: 1\nSegmentation.keyframeCheck: 1\nSegmentation.checkNewPoints: 1\n"));
+  EXPECT_TRUE(c.segmentation.start_check);
+  EXPECT_TRUE(c.segmentation.keyframe_check);
+  EXPECT_TRUE(c.segmentation.check_new_points);
+  const Settings k = load_settings(dir.write("k.yaml", kTum + "Segmentation.keyframeCheck: 1\n"));
+  EXPECT_FALSE(k.segmentation.start_check);
+  EXPECT_TRUE(k.segmentation.keyframe_check);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -55,6 +66,14 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
       {kTum + "Segmentation.provisionalPoints: 2\n", "Segmentation.provisionalPoints", "must be 0 or 1"},
       {kTum + "Segmentation.provisionalPoints: 1\nSegmentation.keyframeHold: 0\n", "Segmentation.provisionalPoints",
        "needs keyframe_hold"},
+      {kTum + "Segmentation.startCheck: 2\n", "Segmentation.startCheck", "must be 0 or 1"},
+      {kTum + "Segmentation.keyframeCheck: -1\n", "Segmentation.keyframeCheck", "must be 0 or 1"},
+      {kTum + "Segmentation.checkNewPoints: 2\n", "Segmentation.checkNewPoints", "must be 0 or 1"},
+      {kTum + "Segmentation.checkNewPoints: 1\n", "Segmentation.checkNewPoints", "needs start_check or keyframe_check"},
+      {kTum + "Segmentation.keyframeCheck: 1\nSegmentation.provisionalPoints: 1\n", "Segmentation.keyframeCheck",
+       "cannot be combined with provisional_points"},
+      {kTum + "Segmentation.startCheck: 1\nSegmentation.provisionalPoints: 1\n", "Segmentation.startCheck",
+       "cannot be combined with provisional_points"},
       {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
        "must be at most max_mask_age"},
   };

@@ -51,8 +51,11 @@ class JumpingPerson final : public Segmenter {
   }
 };
 
-RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false, bool provisional_points = false) {
+RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false, bool provisional_points = false,
+                    bool keyframe_check = false, bool check_new_points = false) {
   Settings settings = seq.settings;
+  settings.segmentation.keyframe_check = keyframe_check;
+  settings.segmentation.check_new_points = check_new_points;
   settings.tracking.init_min_keypoints = 300;
   settings.segmentation.enabled = true;
   settings.segmentation.mode = SegmentationMode::Async;
@@ -200,6 +203,44 @@ TEST(AsyncSegmentation, ProvisionalPointsPassEveryKeyframeAtOnceAndCullInsideThe
     differs = hold.frames[i].inliers != r.frames[i].inliers;
   }
   EXPECT_TRUE(differs);
+}
+
+// Segmentation.keyframeCheck with the hold (keyframeMaskAge 2): keyframes at
+// mask age 1-2 go to local mapping at once and are checked when their own
+// masks come (those above 2 are held as before).
+TEST(AsyncSegmentation, KeyframeCheckPassesKeyframesAtOnceAndChecksThemWithTheirOwnMasks) {
+  const RunResult hold = run_async(sequence(), true);
+  const RunResult r = run_async(sequence(), true, false, true);
+  std::size_t checked = 0, held = 0, keyframes = 0;
+  int removed = 0, hold_removed = 0;
+  for (const FrameStats& f : r.frames) {
+    keyframes += f.keyframe;
+    removed += f.held_points_removed;
+    if (!f.keyframe_held) continue;
+    EXPECT_TRUE(f.keyframe) << f.index;
+    EXPECT_GT(f.build.mask_age, 0) << f.index;
+    EXPECT_NE(f.build.segmentation_request, ScheduleReason::None) << f.index;
+    (f.build.mask_age > 2 ? held : checked)++;
+  }
+  for (const FrameStats& f : hold.frames) hold_removed += f.held_points_removed;
+  EXPECT_GE(checked, 2u);  // keyframes the hold alone passes unchecked
+  EXPECT_GT(removed, 0);
+  EXPECT_GT(hold_removed, 0);
+  // Not the hold's run: the checked keyframes' points inside their masks went.
+  bool differs = hold.frames.size() != r.frames.size();
+  for (std::size_t i = 0; !differs && i < r.frames.size(); ++i) {
+    differs = hold.frames[i].inliers != r.frames[i].inliers ||
+              hold.frames[i].held_points_removed != r.frames[i].held_points_removed;
+  }
+  EXPECT_TRUE(differs);
+  EXPECT_GT(r.trajectory.size(), sequence().frames.size() * 9 / 10);
+  EXPECT_GE(static_cast<std::size_t>(r.mapper.keyframes), keyframes);
+  EXPECT_LE(static_cast<std::size_t>(r.mapper.keyframes), keyframes + 1);
+  // Culling the points made after a checked keyframe too: a run that still removes points.
+  const RunResult n = run_async(sequence(), true, false, true, true);
+  int new_removed = 0;
+  for (const FrameStats& f : n.frames) new_removed += f.held_points_removed;
+  EXPECT_GT(new_removed, 0);
 }
 
 }  // namespace

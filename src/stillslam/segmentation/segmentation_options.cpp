@@ -26,6 +26,15 @@ void SegmentationOptions::check() const {
                       "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait "
                       "for their own mask");
   }
+  if ((start_check || keyframe_check) && provisional_points) {
+    throw OptionError(start_check ? "SegmentationOptions.start_check" : "SegmentationOptions.keyframe_check", "1",
+                      "cannot be combined with provisional_points (Segmentation.provisionalPoints: 1): a "
+                      "keyframe is either checked with its points in use or its points wait");
+  }
+  if (check_new_points && !start_check && !keyframe_check) {
+    throw OptionError("SegmentationOptions.check_new_points", "1",
+                      "needs start_check or keyframe_check (Segmentation.startCheck / Segmentation.keyframeCheck: 1)");
+  }
   if (modelled_latency > max_mask_age) {
     throw OptionError("SegmentationOptions.modelled_latency", option_check::text(modelled_latency),
                       "must be at most max_mask_age (" + option_check::text(max_mask_age) + ")");

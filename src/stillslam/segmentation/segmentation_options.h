@@ -52,6 +52,21 @@ struct SegmentationOptions {
   // goes to local mapping at once and only its new depth points wait for the
   // frame's own mask, provisional (tracking/provisional_points.h).
   bool provisional_points = false;
+  // Async: Segmentation.startCheck, the map's first keyframe made under a
+  // carried mask is checked with its frame's own mask (requested for it) when
+  // that comes: its points inside are culled, the start is not delayed
+  // (tracking/keyframe_check.h).
+  bool start_check = false;
+  // Async: Segmentation.keyframeCheck, every other keyframe made under a
+  // carried mask (age > 0) that is not held (keyframe_hold) goes to local
+  // mapping at once, its frame to the segmenter, and its points inside its
+  // own mask are culled or unlinked when that mask comes (keyframe_check.h).
+  bool keyframe_check = false;
+  // Async: Segmentation.checkNewPoints, with start_check or keyframe_check:
+  // at the check, the points made since that keyframe (local mapping's
+  // triangulations with it, later keyframes' points) that it sees inside its
+  // own mask are culled too, not only unlinked from it.
+  bool check_new_points = false;
   // Async with --deterministic: Segmentation.modelledLatency, the mask of
   // frame k is usable from frame k + this on (the segmenter's time in frames),
   // independent of timing. 5: one YOLO thread's ~140 ms at 30 Hz.

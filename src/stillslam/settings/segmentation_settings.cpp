@@ -96,6 +96,9 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.flag("freshMaskCull", options.fresh_mask_cull);
   keys.flag("keyframeHold", options.keyframe_hold);
   keys.flag("provisionalPoints", options.provisional_points, "SegmentationOptions.provisional_points");
+  keys.flag("startCheck", options.start_check, "SegmentationOptions.start_check");
+  keys.flag("keyframeCheck", options.keyframe_check, "SegmentationOptions.keyframe_check");
+  keys.flag("checkNewPoints", options.check_new_points, "SegmentationOptions.check_new_points");
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

@@ -22,9 +22,11 @@ struct FrameStats {
   bool keyframe_deferred = false;  // due, but the mask was older than Segmentation.keyframeMaskAge
   MotionPriorFrame motion_prior;  // TrackingResult::motion_prior
   // Made with a carried mask, held until its own mask comes (keyframe_hold.h), or with
-  // Segmentation.provisionalPoints its new points provisional until then (provisional_points.h).
+  // Segmentation.provisionalPoints its new points provisional until then (provisional_points.h), or
+  // with Segmentation.startCheck / keyframeCheck in use at once and checked then (keyframe_check.h).
   bool keyframe_held = false;
-  // Points culled or unlinked as held keyframes were released (or provisional points checked) after this frame.
+  // Points culled or unlinked as held keyframes were released (or provisional points or checked
+  // keyframes checked) before this frame was tracked.
   int held_points_removed = 0;
   int fresh_mask_culled = 0;  // map points culled when an earlier frame's own mask arrived (fresh_mask_check.h)
   double tracking_ms = 0;  // tracker only (map matching, pose optimization, keyframe decision)

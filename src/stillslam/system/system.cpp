@@ -122,6 +122,11 @@ void System::build_pipeline(const Settings& settings) {
         keyframe_hold_ = std::make_unique<KeyframeHold>();
       }
       keyframe_mask_age_ = settings.segmentation.keyframe_mask_age;
+      check_start_ = settings.segmentation.start_check;
+      check_keyframes_ = settings.segmentation.keyframe_check;
+      if (check_start_ || check_keyframes_) {
+        keyframe_check_ = std::make_unique<KeyframeCheck>(settings.segmentation.check_new_points);
+      }
     } else {
       segmentation_ = std::make_unique<SegmentationWorker>(std::move(segmenter), dynamic_class_ids_,
                                                            settings.segmentation.mask_dilation, hold);
@@ -278,6 +283,20 @@ void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
   if (provisional_points_ && kf->frame_id() == tracked.id() && tracker_->makes_provisional_points(tracked)) {
     provisional_points_->add(kf, keypoint_pixels(tracked));
   }
+  if (keyframe_check_) {
+    // The tracker holds the map lock while it makes a keyframe.
+    const bool first = tracker_->map().num_keyframes() == 1;
+    const bool this_frame = kf->frame_id() == tracked.id();
+    const bool held = keyframe_hold_ && this_frame && tracked.mask_age() > keyframe_mask_age_;
+    if (this_frame && !held && tracked.mask_age() > 0 && (check_keyframes_ || (check_start_ && first))) {
+      keyframe_check_->add(kf, keypoint_pixels(tracked));  // process() gives it the frame's input index
+    } else if (!this_frame && first && check_start_ && start_candidate_ &&
+               start_candidate_->frame_id == kf->frame_id()) {
+      // The map started from an earlier frame, the candidate whose own mask was requested.
+      keyframe_check_->add(kf, std::move(start_candidate_->pixels), start_candidate_->index);
+      start_candidate_.reset();
+    }
+  }
   if (!keyframe_hold_) {
     mapper_->insert_keyframe(std::move(kf));
     return;
@@ -292,7 +311,29 @@ void System::on_new_keyframe(KeyFramePtr kf, const Frame& tracked) {
   for (KeyFramePtr& k : keyframe_hold_->pass(std::move(kf))) mapper_->insert_keyframe(std::move(k));
 }
 
+void System::request_start_candidate_mask(const SensorFrame& input, const Frame& frame) {
+  if (!keyframe_check_ || !check_start_ || tracker_->state() != TrackingState::NotInitialized) return;
+  if (tracker_->start_candidate_id() != frame.id() || frame.mask_age() <= 0) return;
+  // One request in flight: a candidate replaced before its mask came keeps it.
+  const std::shared_ptr<const SegmentationResult>& fresh = async_masks_->fresh();
+  if (start_candidate_ && (!fresh || fresh->frame_index < start_candidate_->index)) return;
+  async_masks_->segment_last(input.color, input.index);
+  start_candidate_ = StartCandidate{frame.id(), input.index, keypoint_pixels(frame)};
+}
+
 int System::release_held_keyframes() {
+  int checked_removed = 0;
+  if (keyframe_check_ && !keyframe_check_->empty() && async_masks_->fresh()) {
+    const SegmentationResult& fresh = *async_masks_->fresh();
+    std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+    // The mask a frame segmented for itself would have had (held-over instances, dilation).
+    const KeyframeCheckResult checked = keyframe_check_->check(fresh.frame_index, {fresh.dynamic_mask});
+    checked_removed = checked.culled + checked.unlinked;
+  }
+  return checked_removed + release_held_and_provisional();
+}
+
+int System::release_held_and_provisional() {
   if (provisional_points_ && !provisional_points_->empty() && async_masks_->fresh()) {
     const SegmentationResult& fresh = *async_masks_->fresh();
     Map& map = tracker_->map();
@@ -319,6 +360,8 @@ int System::release_held_keyframes() {
 }
 
 void System::release_all_held_keyframes() {
+  if (keyframe_check_) keyframe_check_->drop_all();
+  start_candidate_.reset();
   if (provisional_points_ && !provisional_points_->empty()) {
     Map& map = tracker_->map();
     ProvisionalCheck confirmed;
@@ -433,6 +476,7 @@ FrameStats System::process(const SensorFrame& input) {
   if (options_.deterministic && provisional_points_) mapper_->process_pending();
   Stopwatch tracking;
   ThreadCpuStopwatch tracking_cpu;
+  const std::size_t checks_before = keyframe_check_ ? keyframe_check_->size() : 0;
   const TrackingResult result = tracker_->track(frame);
   stats.tracking_ms = tracking.elapsed_ms();
   stats.tracking_cpu_ms = tracking_cpu.elapsed_ms();
@@ -451,12 +495,17 @@ FrameStats System::process(const SensorFrame& input) {
   // A keyframe candidate or weak tracking gets the next segmentation slot.
   const bool weak = result.state == TrackingState::Ok && result.inliers < urgent_inliers_;
   if (async_masks_ && (result.keyframe_deferred || weak)) async_masks_->request_urgent();
-  if ((keyframe_hold_ && keyframe_hold_->assign(input.index) > 0) ||
-      (provisional_points_ && provisional_points_->assign(input.index) > 0)) {
-    // The held keyframe's frame gets its own mask.
+  const int held = keyframe_hold_ ? keyframe_hold_->assign(input.index) : 0;
+  const int provisional = provisional_points_ ? provisional_points_->assign(input.index) : 0;
+  const int checked = keyframe_check_ ? keyframe_check_->assign(input.index) : 0;
+  if (held + provisional + checked > 0) {
+    // The held (or checked) keyframe's frame gets its own mask.
     stats.keyframe_held = true;
     if (async_masks_->segment_last(input.color, input.index)) stats.build.segmentation_request = ScheduleReason::Keyframe;
   }
+  // The map's first keyframe made from an earlier frame (the start candidate, segmented already).
+  if (keyframe_check_ && keyframe_check_->size() > checks_before && checked == 0) stats.keyframe_held = true;
+  if (async_masks_) request_start_candidate_mask(input, frame);
   if (async_masks_) {
     std::optional<Eigen::Isometry3d> pose;
     if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();

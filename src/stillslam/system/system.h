@@ -49,6 +49,7 @@
 #include "stillslam/system/trajectory_refinement.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/fresh_mask_check.h"
+#include "stillslam/tracking/keyframe_check.h"
 #include "stillslam/tracking/keyframe_hold.h"
 #include "stillslam/tracking/provisional_points.h"
 #include "stillslam/tracking/motion_stage.h"
@@ -209,13 +210,31 @@ class System {
   // go to local mapping at once, their new points wait here for the mask.
   std::unique_ptr<ProvisionalPoints> provisional_points_;
   int keyframe_mask_age_ = 0;
+  // Segmentation.startCheck / keyframeCheck: keyframes made under carried
+  // masks, in local mapping already, checked here when their own masks come.
+  std::unique_ptr<KeyframeCheck> keyframe_check_;
+  bool check_start_ = false;      // Segmentation.startCheck: the map's first keyframe
+  bool check_keyframes_ = false;  // Segmentation.keyframeCheck: every keyframe not held
+  // startCheck: the start candidate under a carried mask sent to the
+  // segmenter, whose own mask checks the first keyframe if the map starts from it.
+  struct StartCandidate {
+    std::uint64_t frame_id = 0;
+    std::size_t index = 0;  // its input index
+    std::vector<cv::Point2f> pixels;  // its keypoints in the image
+  };
+  std::optional<StartCandidate> start_candidate_;
+  // startCheck: after tracking a frame that became the start candidate.
+  void request_start_candidate_mask(const SensorFrame& input, const Frame& frame);
   // Local mapping gets `kf` now or, with keyframe_hold_, when its turn comes
   // (`tracked`: the frame being tracked, LocalMappingLink::insert_keyframe).
   void on_new_keyframe(KeyFramePtr kf, const Frame& tracked);
-  // Releases the held keyframes (or checks the provisional points) the newest
-  // segmentation result allows; returns the points removed.
+  // Releases the held keyframes (or checks the provisional points) and checks
+  // the keyframes of keyframe_check_ the newest segmentation result allows;
+  // returns the points removed.
   int release_held_keyframes();
-  // Every held keyframe, unchecked, and every provisional point confirmed (a new map, a merge, shutdown).
+  int release_held_and_provisional();  // the keyframe hold's and provisional points' part
+  // Every held keyframe, unchecked, every provisional point confirmed and
+  // every keyframe check dropped (a new map, a merge, shutdown).
   void release_all_held_keyframes();
   int urgent_inliers_ = 0;  // Segmentation.urgentInliers
   std::vector<int> dynamic_class_ids_;  // the classes the segmentation masks

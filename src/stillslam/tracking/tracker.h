@@ -76,6 +76,11 @@ class Tracker {
   bool makes_provisional_points(const Frame& frame) const;
 
   TrackingState state() const { return state_; }
+  // While no map is started: the frame the first keyframe would be made from
+  // if the next frames confirm it (Tracker options init_confirm_frames).
+  std::optional<std::uint64_t> start_candidate_id() const {
+    return start_candidate_ ? std::optional<std::uint64_t>(start_candidate_->id()) : std::nullopt;
+  }
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
 
  private:
