@@ -8,54 +8,55 @@
 #include "stillslam/features/descriptor.h"
 
 namespace stillslam {
-namespace {
 
-struct Best {
-  int index = -1;
-  int distance = std::numeric_limits<int>::max();
-  int second = std::numeric_limits<int>::max();
-  void offer(int i, int d) {
-    if (d < distance) {
-      second = distance;
-      distance = d;
-      index = i;
-    } else if (d < second) {
-      second = d;
-    }
+void MatchCandidates::Best::offer(int i, int d) {
+  if (d < distance) {
+    second = distance;
+    distance = d;
+    index = i;
+  } else if (d < second) {
+    second = d;
   }
-};
+}
 
-}  // namespace
+MatchCandidates::MatchCandidates(std::size_t query_rows, std::size_t train_rows)
+    : best_for_query_(query_rows), best_for_train_(train_rows) {}
 
-std::vector<cv::DMatch> match_descriptors(const cv::Mat& query, const cv::Mat& train,
-                                          const DescriptorMatchOptions& options) {
-  std::vector<cv::DMatch> matches;
-  if (query.empty() || train.empty()) return matches;
-  STILLSLAM_CHECK_EQ(query.type(), CV_8UC1, "match_descriptors: query rows must be 32-byte ORB descriptors");
-  STILLSLAM_CHECK_EQ(query.cols, kDescriptorBytes, "match_descriptors: query rows must be 32-byte ORB descriptors");
-  STILLSLAM_CHECK_EQ(train.type(), CV_8UC1, "match_descriptors: train rows must be 32-byte ORB descriptors");
-  STILLSLAM_CHECK_EQ(train.cols, kDescriptorBytes, "match_descriptors: train rows must be 32-byte ORB descriptors");
-  std::vector<Best> best_for_query(static_cast<std::size_t>(query.rows));
-  std::vector<Best> best_for_train(static_cast<std::size_t>(train.rows));
-  for (int q = 0; q < query.rows; ++q) {
-    const std::uint8_t* a = query.ptr<std::uint8_t>(q);
-    for (int t = 0; t < train.rows; ++t) {
-      const int d = descriptor_distance(a, train.ptr<std::uint8_t>(t));
-      best_for_query[static_cast<std::size_t>(q)].offer(t, d);
-      best_for_train[static_cast<std::size_t>(t)].offer(q, d);
-    }
-  }
-  for (int q = 0; q < query.rows; ++q) {
-    const Best& b = best_for_query[static_cast<std::size_t>(q)];
+void MatchCandidates::offer(int query, int train, int distance) {
+  best_for_query_[static_cast<std::size_t>(query)].offer(train, distance);
+  best_for_train_[static_cast<std::size_t>(train)].offer(query, distance);
+}
+
+std::vector<cv::DMatch> MatchCandidates::matches(const DescriptorMatchOptions& options) const {
+  std::vector<cv::DMatch> out;
+  for (std::size_t q = 0; q < best_for_query_.size(); ++q) {
+    const Best& b = best_for_query_[q];
     if (b.index < 0 || b.distance > options.max_distance) continue;
     if (options.ratio < 1.f && b.second != std::numeric_limits<int>::max() &&
         static_cast<float>(b.distance) >= options.ratio * static_cast<float>(b.second)) {
       continue;
     }
-    if (options.cross_check && best_for_train[static_cast<std::size_t>(b.index)].index != q) continue;
-    matches.emplace_back(q, b.index, static_cast<float>(b.distance));
+    if (options.cross_check && best_for_train_[static_cast<std::size_t>(b.index)].index != static_cast<int>(q)) {
+      continue;
+    }
+    out.emplace_back(static_cast<int>(q), b.index, static_cast<float>(b.distance));
   }
-  return matches;
+  return out;
+}
+
+std::vector<cv::DMatch> match_descriptors(const cv::Mat& query, const cv::Mat& train,
+                                          const DescriptorMatchOptions& options) {
+  if (query.empty() || train.empty()) return {};
+  STILLSLAM_CHECK_EQ(query.type(), CV_8UC1, "match_descriptors: query rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(query.cols, kDescriptorBytes, "match_descriptors: query rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(train.type(), CV_8UC1, "match_descriptors: train rows must be 32-byte ORB descriptors");
+  STILLSLAM_CHECK_EQ(train.cols, kDescriptorBytes, "match_descriptors: train rows must be 32-byte ORB descriptors");
+  MatchCandidates candidates(static_cast<std::size_t>(query.rows), static_cast<std::size_t>(train.rows));
+  for (int q = 0; q < query.rows; ++q) {
+    const std::uint8_t* a = query.ptr<std::uint8_t>(q);
+    for (int t = 0; t < train.rows; ++t) candidates.offer(q, t, descriptor_distance(a, train.ptr<std::uint8_t>(t)));
+  }
+  return candidates.matches(options);
 }
 
 std::vector<bool> rotation_consistent(const std::vector<float>& angle_differences_deg, int bins) {

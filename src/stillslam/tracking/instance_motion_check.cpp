@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "stillslam/core/error.h"
 #include "stillslam/core/option_check.h"
@@ -14,29 +13,13 @@ namespace stillslam {
 
 namespace {
 
-struct Best {
-  int index = -1;
-  int distance = std::numeric_limits<int>::max();
-  int second = std::numeric_limits<int>::max();
-  void offer(int i, int d) {
-    if (d < distance) {
-      second = distance;
-      distance = d;
-      index = i;
-    } else if (d < second) {
-      second = d;
-    }
-  }
-};
-
 // match_descriptors(cur, prev) with each pair offered only when prev's
 // predicted pixel in cur lies within `window` px of cur's on both axes: the
 // same ratio test and cross check, over the pairs of a grid of cur's features.
 std::vector<cv::DMatch> match_in_window(const PinholeCamera& camera, const Eigen::Isometry3d& T_cur_prev,
                                         const MotionCheckFrame& cur, const MotionCheckFrame& prev, double window,
                                         const DescriptorMatchOptions& options) {
-  std::vector<cv::DMatch> matches;
-  if (cur.pixels.empty() || prev.pixels.empty()) return matches;
+  if (cur.pixels.empty() || prev.pixels.empty()) return {};
   double max_u = 0, max_v = 0;
   for (const Eigen::Vector2d& p : cur.pixels) {
     max_u = std::max(max_u, p.x());
@@ -49,7 +32,7 @@ std::vector<cv::DMatch> match_in_window(const PinholeCamera& camera, const Eigen
     const int cu = std::max(0, cell(cur.pixels[c].x())), cv_ = std::max(0, cell(cur.pixels[c].y()));
     grid[static_cast<std::size_t>(cv_ * cols + cu)].push_back(static_cast<int>(c));
   }
-  std::vector<Best> best_cur(cur.pixels.size()), best_prev(prev.pixels.size());
+  MatchCandidates candidates(cur.pixels.size(), prev.pixels.size());
   for (std::size_t p = 0; p < prev.pixels.size(); ++p) {
     const Eigen::Vector3d ray = prev.depth[p] > 0 ? T_cur_prev * camera.unproject(prev.pixels[p], prev.depth[p])
                                                   : T_cur_prev.linear() * camera.unproject(prev.pixels[p], 1.0);
@@ -63,24 +46,12 @@ std::vector<cv::DMatch> match_in_window(const PinholeCamera& camera, const Eigen
         for (int c : grid[static_cast<std::size_t>(v * cols + u)]) {
           const Eigen::Vector2d& x = cur.pixels[static_cast<std::size_t>(c)];
           if (std::abs(x.x() - q.x()) > window || std::abs(x.y() - q.y()) > window) continue;
-          const int d = descriptor_distance(cur.descriptors.ptr<std::uint8_t>(c), b);
-          best_cur[static_cast<std::size_t>(c)].offer(static_cast<int>(p), d);
-          best_prev[p].offer(c, d);
+          candidates.offer(c, static_cast<int>(p), descriptor_distance(cur.descriptors.ptr<std::uint8_t>(c), b));
         }
       }
     }
   }
-  for (std::size_t c = 0; c < best_cur.size(); ++c) {
-    const Best& b = best_cur[c];
-    if (b.index < 0 || b.distance > options.max_distance) continue;
-    if (options.ratio < 1.f && b.second != std::numeric_limits<int>::max() &&
-        static_cast<float>(b.distance) >= options.ratio * static_cast<float>(b.second)) {
-      continue;
-    }
-    if (options.cross_check && best_prev[static_cast<std::size_t>(b.index)].index != static_cast<int>(c)) continue;
-    matches.emplace_back(static_cast<int>(c), b.index, static_cast<float>(b.distance));
-  }
-  return matches;
+  return candidates.matches(options);
 }
 
 }  // namespace
