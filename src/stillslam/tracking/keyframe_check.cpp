@@ -1,6 +1,6 @@
 #include "stillslam/tracking/keyframe_check.h"
 
-#include "stillslam/tracking/fresh_mask_check.h"
+#include <cstdint>
 
 namespace stillslam {
 
@@ -8,15 +8,7 @@ void KeyframeCheck::add(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels, std
   pending_.push_back({std::move(kf), frame_index, std::move(raw_pixels)});
 }
 
-int KeyframeCheck::assign(std::size_t frame_index) {
-  int n = 0;
-  for (Entry& e : pending_) {
-    if (e.frame_index) continue;
-    e.frame_index = frame_index;
-    ++n;
-  }
-  return n;
-}
+int KeyframeCheck::assign(std::size_t frame_index) { return assign_frame_index(pending_, frame_index); }
 
 KeyframeCheckResult KeyframeCheck::check(std::size_t frame_index, const std::vector<cv::Mat1b>& instances) {
   KeyframeCheckResult out;
@@ -36,20 +28,14 @@ KeyframeCheckResult KeyframeCheck::check(std::size_t frame_index, const std::vec
     KeyFrame& kf = *it->kf;
     if (!kf.is_bad()) {
       ++out.checked;
-      for (std::size_t i = 0; i < kf.size() && i < it->raw_pixels.size(); ++i) {
-        const MapPointPtr mp = kf.map_point(i);
-        if (!mp || mp->is_bad() || !on_any_instance(instances, it->raw_pixels[i])) continue;
-        const bool own = mp->first_keyframe_id() == kf.id();
-        const bool newer = mp->first_keyframe_id() > kf.id();
-        if (own || (cull_new_points_ && newer)) {
-          mp->set_bad();
-          ++out.culled;
-        } else {
-          kf.erase_map_point(i);
-          mp->erase_observation(&kf);
-          ++out.unlinked;
-        }
-      }
+      const std::uint64_t id = kf.id();
+      const bool cull_new = cull_new_points_;
+      const PointsInsideMask removed =
+          remove_points_inside(kf, it->raw_pixels, instances, [id, cull_new](const MapPoint& mp) {
+            return mp.first_keyframe_id() == id || (cull_new && mp.first_keyframe_id() > id);
+          });
+      out.culled += removed.culled;
+      out.unlinked += removed.unlinked;
     }
     it = pending_.erase(it);
   }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "stillslam/map/keyframe.h"
+#include "stillslam/tracking/mask_wait.h"
 
 namespace stillslam {
 
@@ -52,13 +53,8 @@ class KeyframeCheck {
   KeyframeCheckResult drop_all();
 
  private:
-  struct Entry {
-    KeyFramePtr kf;
-    std::optional<std::size_t> frame_index;  // until assign()
-    std::vector<cv::Point2f> raw_pixels;
-  };
   bool cull_new_points_;
-  std::deque<Entry> pending_;
+  std::deque<MaskWait> pending_;
 };
 
 }  // namespace stillslam

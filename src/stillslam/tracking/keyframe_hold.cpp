@@ -1,56 +1,40 @@
 #include "stillslam/tracking/keyframe_hold.h"
 
 #include <algorithm>
-
-#include "stillslam/tracking/fresh_mask_check.h"
+#include <cstdint>
 
 namespace stillslam {
 
 void KeyframeHold::hold(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels) {
-  queue_.push_back({std::move(kf), true, std::nullopt, std::move(raw_pixels)});
+  queue_.push_back({std::move(kf), std::nullopt, std::move(raw_pixels), true});
 }
 
-int KeyframeHold::assign(std::size_t frame_index) {
-  int n = 0;
-  for (Entry& e : queue_) {
-    if (!e.held || e.frame_index) continue;
-    e.frame_index = frame_index;
-    ++n;
-  }
-  return n;
-}
+int KeyframeHold::assign(std::size_t frame_index) { return assign_frame_index(queue_, frame_index); }
 
 std::vector<KeyFramePtr> KeyframeHold::pass(KeyFramePtr kf) {
   if (queue_.empty()) return {std::move(kf)};
-  queue_.push_back({std::move(kf), false, std::nullopt, {}});
+  queue_.push_back({std::move(kf), std::nullopt, {}, false});
   return {};
 }
 
 std::size_t KeyframeHold::held() const {
-  return static_cast<std::size_t>(std::count_if(queue_.begin(), queue_.end(), [](const Entry& e) { return e.held; }));
+  const auto waits = [](const MaskWait& e) { return e.waits; };
+  return static_cast<std::size_t>(std::count_if(queue_.begin(), queue_.end(), waits));
 }
 
 KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::vector<cv::Mat1b>& instances) {
   KeyframeHoldRelease out;
   while (!queue_.empty() &&
-         (!queue_.front().held || (queue_.front().frame_index && *queue_.front().frame_index <= frame_index))) {
-    Entry e = std::move(queue_.front());
+         (!queue_.front().waits || (queue_.front().frame_index && *queue_.front().frame_index <= frame_index))) {
+    MaskWait e = std::move(queue_.front());
     queue_.pop_front();
-    if (e.held && *e.frame_index < frame_index) ++out.unchecked;
-    if (e.held && *e.frame_index == frame_index && !e.kf->is_bad()) {
-      KeyFrame* kf = e.kf.get();
-      for (std::size_t i = 0; i < kf->size() && i < e.raw_pixels.size(); ++i) {
-        const MapPointPtr mp = kf->map_point(i);
-        if (!mp || mp->is_bad() || !on_any_instance(instances, e.raw_pixels[i])) continue;
-        if (mp->first_keyframe_id() == kf->id()) {
-          mp->set_bad();
-          ++out.culled;
-        } else {
-          kf->erase_map_point(i);
-          mp->erase_observation(kf);
-          ++out.unlinked;
-        }
-      }
+    if (e.waits && *e.frame_index < frame_index) ++out.unchecked;
+    if (e.waits && *e.frame_index == frame_index && !e.kf->is_bad()) {
+      const std::uint64_t id = e.kf->id();
+      const PointsInsideMask removed = remove_points_inside(
+          *e.kf, e.raw_pixels, instances, [id](const MapPoint& mp) { return mp.first_keyframe_id() == id; });
+      out.culled += removed.culled;
+      out.unlinked += removed.unlinked;
     }
     out.keyframes.push_back(std::move(e.kf));
   }
@@ -59,8 +43,8 @@ KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::ve
 
 KeyframeHoldRelease KeyframeHold::release_all() {
   KeyframeHoldRelease out;
-  for (Entry& e : queue_) {
-    out.unchecked += e.held;
+  for (MaskWait& e : queue_) {
+    out.unchecked += e.waits;
     out.keyframes.push_back(std::move(e.kf));
   }
   queue_.clear();

@@ -12,10 +12,10 @@
 
 #include <cstddef>
 #include <deque>
-#include <optional>
 #include <vector>
 
 #include "stillslam/map/keyframe.h"
+#include "stillslam/tracking/mask_wait.h"
 
 namespace stillslam {
 
@@ -53,13 +53,7 @@ class KeyframeHold {
   KeyframeHoldRelease release_all();
 
  private:
-  struct Entry {
-    KeyFramePtr kf;
-    bool held = false;
-    std::optional<std::size_t> frame_index;  // until assign()
-    std::vector<cv::Point2f> raw_pixels;
-  };
-  std::deque<Entry> queue_;
+  std::deque<MaskWait> queue_;  // waits: held
 };
 
 }  // namespace stillslam

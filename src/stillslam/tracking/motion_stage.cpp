@@ -203,7 +203,9 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
     rows.push_back(static_cast<int>(i));
   }
   inside_.descriptors.create(static_cast<int>(rows.size()), f.descriptors.cols, f.descriptors.type());
-  for (std::size_t k = 0; k < rows.size(); ++k) f.descriptors.row(rows[k]).copyTo(inside_.descriptors.row(static_cast<int>(k)));
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    f.descriptors.row(rows[k]).copyTo(inside_.descriptors.row(static_cast<int>(k)));
+  }
   stats.instance_features = static_cast<int>(rows.size());
 }
 
@@ -217,7 +219,8 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
     points[frame_labels[i]].push_back(camera_.unproject(Eigen::Vector2d(p.x, p.y), frame.depth(i)));
   }
   for (std::size_t i = 0; i < inside_.pixels.size(); ++i) {
-    if (inside_.depth[i] > 0) points[inside_.instance[i]].push_back(camera_.unproject(inside_.pixels[i], inside_.depth[i]));
+    if (inside_.depth[i] <= 0) continue;
+    points[inside_.instance[i]].push_back(camera_.unproject(inside_.pixels[i], inside_.depth[i]));
   }
   const Eigen::Isometry3d T_world_cam = frame.T_cam_world().inverse();
   std::set<std::uint32_t> present;
@@ -301,7 +304,8 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
       const int* l = labels_.ptr<int>(v);
       std::uint8_t* out = people.ptr<std::uint8_t>(v);
       for (int u = 0; u < labels_.cols; ++u) {
-        if (l[u] != 0 && dynamic_ids_.count(static_cast<std::uint32_t>(l[u])) && masked(static_cast<std::uint32_t>(l[u]))) out[u] = 255;
+        const auto id = static_cast<std::uint32_t>(l[u]);
+        if (id != 0 && dynamic_ids_.count(id) && masked(id)) out[u] = 255;
       }
     }
   }
@@ -314,8 +318,9 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
   std::set<std::uint32_t> ids{0};
   for (const auto& [id, category] : categories_) {
     if (dynamic_ids_.count(id) || moving_.count(id)) continue;
-    const auto s = std::find_if(r.instances.begin(), r.instances.end(),
-                                [id = id](const InstanceMotionState& st) { return static_cast<std::uint32_t>(st.id) == id; });
+    const auto s = std::find_if(r.instances.begin(), r.instances.end(), [id = id](const InstanceMotionState& st) {
+      return static_cast<std::uint32_t>(st.id) == id;
+    });
     if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
   }
   if (ids.size() == 1) return;

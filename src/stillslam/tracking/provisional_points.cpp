@@ -42,21 +42,13 @@ void ProvisionalPoints::add(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels)
   pending_.push_back({std::move(kf), std::nullopt, std::move(raw_pixels)});
 }
 
-int ProvisionalPoints::assign(std::size_t frame_index) {
-  int n = 0;
-  for (Entry& e : pending_) {
-    if (e.frame_index) continue;
-    e.frame_index = frame_index;
-    ++n;
-  }
-  return n;
-}
+int ProvisionalPoints::assign(std::size_t frame_index) { return assign_frame_index(pending_, frame_index); }
 
 ProvisionalCheck ProvisionalPoints::check(std::size_t frame_index, const std::vector<cv::Mat1b>& instances,
                                           std::uint64_t next_keyframe_id) {
   ProvisionalCheck out;
   while (!pending_.empty() && pending_.front().frame_index && *pending_.front().frame_index <= frame_index) {
-    Entry e = std::move(pending_.front());
+    MaskWait e = std::move(pending_.front());
     pending_.pop_front();
     if (*e.frame_index < frame_index) {
       ++out.unchecked;
@@ -70,7 +62,7 @@ ProvisionalCheck ProvisionalPoints::check(std::size_t frame_index, const std::ve
 
 ProvisionalCheck ProvisionalPoints::confirm_all(std::uint64_t next_keyframe_id) {
   ProvisionalCheck out;
-  for (Entry& e : pending_) {
+  for (MaskWait& e : pending_) {
     ++out.unchecked;
     settle(*e.kf, nullptr, {}, next_keyframe_id, out);
   }

@@ -13,10 +13,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
-#include <optional>
 #include <vector>
 
 #include "stillslam/map/keyframe.h"
+#include "stillslam/tracking/mask_wait.h"
 
 namespace stillslam {
 
@@ -54,12 +54,7 @@ class ProvisionalPoints {
   ProvisionalCheck confirm_all(std::uint64_t next_keyframe_id);
 
  private:
-  struct Entry {
-    KeyFramePtr kf;
-    std::optional<std::size_t> frame_index;  // until assign()
-    std::vector<cv::Point2f> raw_pixels;
-  };
-  std::deque<Entry> pending_;
+  std::deque<MaskWait> pending_;
 };
 
 }  // namespace stillslam
