@@ -19,6 +19,7 @@ BaSolver read_ba_solver(SectionKeys& keys, BaSolver current) {
 
 void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   SectionKeys keys(yaml, "LocalMapping", true);
+  keys.integer("threadNice", options.thread_nice, "LocalMapperOptions.thread_nice", {0, 19});
   // Local bundle adjustment.
   keys.flag("bundleAdjustment", options.enable_bundle_adjustment);
   BundleAdjustmentOptions& ba = options.bundle_adjustment;
