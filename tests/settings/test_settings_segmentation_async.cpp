@@ -35,6 +35,7 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(d.segmentation.max_grow_px, 30);
   EXPECT_EQ(s.segmentation.max_grow_px, 12);
   EXPECT_EQ(s.segmentation.thread_nice, 12);
+  EXPECT_EQ(d.segmentation.thread_nice, 10);
   EXPECT_TRUE(d.segmentation.keyframe_hold);
   EXPECT_FALSE(s.segmentation.keyframe_hold);
   EXPECT_FALSE(d.segmentation.provisional_points);
