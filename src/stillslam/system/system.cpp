@@ -512,7 +512,7 @@ FrameStats System::process(const SensorFrame& input) {
     std::optional<Eigen::Isometry3d> pose;
     if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();
     cv::Mat1f sparse_depth;
-    if (sensor_ == SensorType::Stereo) {
+    if (sensor_ == SensorType::Stereo && async_masks_->wants_sparse_depth(input.index)) {
       // Mask propagation from this frame, if it was segmented, needs depth.
       sparse_depth = cv::Mat1f::zeros(input.gray.size());
       for (std::size_t i = 0; i < frame.size(); ++i) {
