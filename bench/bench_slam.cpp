@@ -190,6 +190,8 @@ std::map<std::string, double> variant_figures(const Args& a, const RunResult& r)
                                   {"propagation_cpu_ms_median", s.propagation_cpu_ms.median},
                                   {"propagation_cpu_ms_mean", s.propagation_cpu_ms.mean},
                                   {"tracker_cpu_ms_median", s.tracking_cpu_ms.median},
+                                  {"core_wait_ms_median", s.core_wait_ms.median},
+                                  {"core_wait_ms_mean", s.core_wait_ms.mean},
                                   {"latency_ms_median", rt.latency_ms.median},
                                   {"latency_ms_p95", rt.latency_ms.p95},
                                   {"dropped_share", rt.dropped_share},
@@ -258,13 +260,14 @@ int bench_variants(const Args& a, const Settings& settings, const Dataset& datas
     out["variants"][variant] = v;
   }
   // Where the tracking thread's CPU goes (medians over frames, then over runs).
-  std::printf("  tracking thread CPU ms/frame (median): %-6s %7s %9s %9s %9s\n", "", "frame", "extract", "propag",
-              "tracker");
+  std::printf("  tracking thread CPU ms/frame (median): %-6s %7s %9s %9s %9s %9s\n", "", "frame", "extract", "propag",
+              "tracker", "coreWait");
   for (const std::string& variant : a.variants) {
     auto m = [&](const char* name) { return figures[variant].count(name) ? median(figures[variant][name]) : -1.0; };
-    std::printf("  %38s %-6s %7.1f %9.1f %9.2f %9.1f  (propagation mean %.2f)\n", "", variant.c_str(),
-                m("frame_cpu_ms_median"), m("extraction_cpu_ms_median"), m("propagation_cpu_ms_median"),
-                m("tracker_cpu_ms_median"), m("propagation_cpu_ms_mean"));
+    std::printf("  %38s %-6s %7.1f %9.1f %9.2f %9.1f %9.2f  (propagation mean %.2f, core wait mean %.2f)\n", "",
+                variant.c_str(), m("frame_cpu_ms_median"), m("extraction_cpu_ms_median"),
+                m("propagation_cpu_ms_median"), m("tracker_cpu_ms_median"), m("core_wait_ms_median"),
+                m("propagation_cpu_ms_mean"), m("core_wait_ms_mean"));
   }
   auto ratio = [&](const std::string& x, const std::string& y, const char* name) -> std::optional<double> {
     if (!figures.count(x) || !figures.count(y) || !figures[x].count(name) || !figures[y].count(name)) return {};

@@ -2,11 +2,14 @@
 // and the keyframe-processed / keyframe-culled callbacks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 #include <thread>
 
 #include "map/map_builder.h"
+#include "stillslam/core/option_check.h"
+#include "stillslam/core/thread_priority.h"
 #include "stillslam/mapping/local_mapper.h"
 
 namespace stillslam {
@@ -56,6 +59,30 @@ TEST(LocalMapper, PausedWorkerLeavesKeyframesQueuedUntilResumed) {
   EXPECT_GT(stats.keyframes_culled, 0);
   for (std::uint64_t id : rec.culled) EXPECT_TRUE(builder.map().keyframe(id) == nullptr) << id;
 }
+
+#if defined(__linux__)
+TEST(LocalMapper, ThreadNiceLowersTheMappingThreadOnly) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 3; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.01 * k)));
+  const int main_nice = this_thread_nice().value();
+  std::optional<int> seen;
+  LocalMapperOptions o;
+  o.enable_bundle_adjustment = false;
+  o.thread_nice = 6;
+  o.on_keyframe_processed = [&seen](KeyFramePtr) { seen = this_thread_nice(); };
+  {
+    LocalMapper mapper(builder.map(), o);
+    mapper.insert_keyframe(kfs[2]);
+    mapper.flush();
+  }
+  EXPECT_EQ(seen, std::min(main_nice + 6, kMaxNice));
+  EXPECT_EQ(this_thread_nice(), main_nice);
+  o.thread_nice = 20;
+  EXPECT_THROW(LocalMapper(builder.map(), o), OptionError);
+}
+#endif
 
 TEST(LocalMapper, PauseIsANoOpInSynchronousMode) {
   test::SyntheticScene scene;

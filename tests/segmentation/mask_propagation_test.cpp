@@ -296,14 +296,38 @@ TEST(MaskPropagation, MarginGrowsWithAge) {
   }
 }
 
+// OpenCV's dilation with a disc kernel: every pixel (dx, dy) with dx^2 + dy^2 <= r^2 of a set pixel.
+cv::Mat1b disc_dilation(const cv::Mat1b& mask, int r) {
+  if (r <= 0) return mask.clone();
+  cv::Mat1b disc(2 * r + 1, 2 * r + 1, uchar{0});
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx)
+      if (dx * dx + dy * dy <= r * r) disc(dy + r, dx + r) = 1;
+  cv::Mat1b out;
+  cv::dilate(mask, out, disc);
+  return out;
+}
+
 TEST(MaskPropagation, GrowMaskIsTheDiscDilation) {
   cv::Mat1b m(kSize, uchar{0});
   cv::ellipse(m, cv::Point(40, 60), cv::Size(20, 30), 15, 0, 360, 255, cv::FILLED);
   m(cv::Rect(300, 0, 20, 10)).setTo(255);  // at the border
   for (int r : {0, 1, 4, 13}) {
-    EXPECT_EQ(cv::countNonZero(grow_mask(m, r) != dynamic_mask({m}, kSize, r)), 0) << "radius " << r;
+    EXPECT_EQ(cv::countNonZero(grow_mask(m, r) != disc_dilation(m, r)), 0) << "radius " << r;
+    EXPECT_EQ(cv::countNonZero(dynamic_mask({m}, kSize, r) != disc_dilation(m, r)), 0) << "radius " << r;
   }
   EXPECT_EQ(cv::countNonZero(grow_mask(cv::Mat1b(kSize, uchar{0}), 5)), 0);
+  // Rows with several runs, lone pixels, holes, all four borders, every radius the propagation uses.
+  cv::Mat1b many(kSize, uchar{0});
+  cv::RNG rng(7);
+  for (int i = 0; i < 40; ++i) many(rng.uniform(0, kSize.height), rng.uniform(0, kSize.width)) = 255;
+  cv::rectangle(many, cv::Rect(100, 50, 60, 40), 255, cv::FILLED);
+  cv::rectangle(many, cv::Rect(115, 60, 20, 15), 0, cv::FILLED);  // a hole
+  many(cv::Rect(0, kSize.height - 3, 5, 3)).setTo(255);
+  many(cv::Rect(kSize.width - 2, 20, 2, 30)).setTo(255);
+  for (int r = 1; r <= 30; ++r) {
+    EXPECT_EQ(cv::countNonZero(grow_mask(many, r) != disc_dilation(many, r)), 0) << "radius " << r;
+  }
 }
 
 TEST(MaskPropagation, EmptyAndFlatInstances) {

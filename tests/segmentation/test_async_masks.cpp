@@ -163,7 +163,11 @@ TEST(AsyncMasks, CarriedMasksGoThroughThePropagatorWhenGivenTheGreyImage) {
   const FrameMask fresh = masks.mask_for(image(), 0, gray);
   EXPECT_EQ(fresh.age, 0);
   EXPECT_EQ(cv::countNonZero(fresh.mask), 100);  // the fresh 10x10 square as segmented
-  masks.on_tracked(0, Eigen::Isometry3d::Identity());
+  // Segmented without depth: a sparse depth of it would be kept; of other frames not.
+  EXPECT_TRUE(masks.wants_sparse_depth(0));
+  EXPECT_FALSE(masks.wants_sparse_depth(1));
+  masks.on_tracked(0, Eigen::Isometry3d::Identity(), cv::Mat1f(40, 60, 2.f));
+  EXPECT_FALSE(masks.wants_sparse_depth(0));  // it has one now
   const FrameMask carried = masks.mask_for(image(), 2, gray);
   EXPECT_EQ(carried.age, 1);        // processed frames: frame 1 was never given
   EXPECT_EQ(carried.input_age, 2);  // the propagator's margin grows with input frames

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "segmentation/gated_segmenter.h"
 #include "stillslam/core/error.h"
+#include "stillslam/core/thread_priority.h"
 
 namespace stillslam {
 namespace {
@@ -71,6 +74,38 @@ TEST(SegmentationStage, StopEndsAWaitAndLaterSubmitsFail) {
   EXPECT_THROW(stage.wait_for(0), Error);
   EXPECT_THROW(stage.submit(image(), 0), Error);
 }
+
+// Records the nice value of the thread it segments on.
+class NiceRecorder final : public Segmenter {
+ public:
+  explicit NiceRecorder(std::optional<int>* seen) : seen_(seen) {}
+  std::vector<Detection> segment(const cv::Mat&) override {
+    *seen_ = this_thread_nice();
+    return {};
+  }
+
+ private:
+  std::optional<int>* seen_;
+};
+
+#if defined(__linux__)
+TEST(SegmentationStage, ThreadNiceLowersTheStageThreadOnly) {
+  const int main_nice = this_thread_nice().value();
+  std::optional<int> seen;
+  {
+    SegmentationStage stage(DynamicMaskMaker(std::make_unique<NiceRecorder>(&seen), {0}, 0), true, 7);
+    stage.submit(image(), 0);
+    stage.wait_for(0);
+  }
+  EXPECT_EQ(seen, std::min(main_nice + 7, kMaxNice));
+  EXPECT_EQ(this_thread_nice(), main_nice);
+  // Not threaded: segments on the caller's thread, whose priority stays.
+  SegmentationStage inline_stage(DynamicMaskMaker(std::make_unique<NiceRecorder>(&seen), {0}, 0), false, 7);
+  inline_stage.submit(image(), 0);
+  EXPECT_EQ(seen, main_nice);
+  EXPECT_EQ(this_thread_nice(), main_nice);
+}
+#endif
 
 }  // namespace
 }  // namespace stillslam

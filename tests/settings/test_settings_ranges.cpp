@@ -58,6 +58,8 @@ const std::vector<Case> kSectionCases = {
     {"Segmentation.holdFrames", "-1", "is -1: must be in [0, 1000]"},
     {"Segmentation.holdFrames", "100000", "is 100000: must be in [0, 1000]"},
     {"Segmentation.threads", "-2", "is -2: must be in [0, "},
+    {"Segmentation.threadNice", "-1", "is -1: must be in [0, 19]"},
+    {"Segmentation.threadNice", "20", "is 20: must be in [0, 19]"},
     // Tracking.*
     {"Tracking.initMinKeypoints", "0", "is 0: must be in [1, 50000]"},
     {"Tracking.initMinKeypoints", "1e9", "is 1e+09: must be in [1, 50000]"},
@@ -126,6 +128,8 @@ const std::vector<Case> kSectionCases = {
     {"Tracking.relocMinInliers", "1e6", "is 1000000: must be in [1, 50000]"},
     // LocalMapping.*
     {"LocalMapping.baThreads", "0", "is 0: must be in [1, "},
+    {"LocalMapping.threadNice", "-5", "is -5: must be in [0, 19]"},
+    {"LocalMapping.threadNice", "40", "is 40: must be in [0, 19]"},
     {"LocalMapping.baSolver", "cholmod", "must be schur (the hand-written Schur-complement solver) or ceres"},
     {"LocalMapping.busyModelKeyframeMs", "-1", "is -1: must be in [0, 10000]"},
     {"LocalMapping.busyModelObservationUs", "2000", "is 2000: must be in [0, 1000]"},

@@ -212,6 +212,7 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
                            "LocalMapping.windowFixedKeyframes: 0\nLocalMapping.windowPoints: 1500\n"
                            "LocalMapping.windowObservations: 7000\nLocalMapping.pauseAbortsBundleAdjustment: 1\n"
                            "LocalMapping.baKeepInterrupted: 0\nLocalMapping.baIterationsBeforeInterrupt: 3\n"
+                           "LocalMapping.threadNice: 7\n"
                            "LocalMapping.busyModel: 0\nLocalMapping.busyModelThreaded: 1\n"
                            "LocalMapping.busyModelKeyframeMs: 15\nLocalMapping.busyModelObservationUs: 4\n"
                            "LocalMapping.busyModelObservationIterationUs: 0.5\nLocalMapping.baSolver: ceres\n";
@@ -228,6 +229,7 @@ TEST(SettingsSections, LocalMappingKeysAreRead) {
   EXPECT_TRUE(m.pause_aborts_bundle_adjustment);
   EXPECT_FALSE(m.bundle_adjustment.keep_progress_on_abort);
   EXPECT_EQ(m.iterations_before_interrupt, 3);
+  EXPECT_EQ(m.thread_nice, 7);
   EXPECT_FALSE(m.busy_model);
   EXPECT_TRUE(m.busy_model_threaded);
   EXPECT_DOUBLE_EQ(m.busy.keyframe_ms, 15);

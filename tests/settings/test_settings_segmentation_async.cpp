@@ -24,7 +24,8 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   const Settings s = load_settings(dir.write(
       "a.yaml", kTum + "Segmentation.mode: async\nSegmentation.interval: 5\nSegmentation.maxMaskAge: 12\n"
                        "Segmentation.keyframeMaskAge: 4\nSegmentation.modelledLatency: 2\n"
-                       "Segmentation.urgentInliers: 70\nSegmentation.maxGrowPx: 12\nSegmentation.keyframeHold: 0\n"));
+                       "Segmentation.urgentInliers: 70\nSegmentation.maxGrowPx: 12\nSegmentation.keyframeHold: 0\n"
+                       "Segmentation.threadNice: 12\n"));
   EXPECT_EQ(s.segmentation.mode, SegmentationMode::Async);
   EXPECT_EQ(s.segmentation.interval, 5);
   EXPECT_EQ(s.segmentation.max_mask_age, 12);
@@ -33,6 +34,8 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(s.segmentation.urgent_inliers, 70);
   EXPECT_EQ(d.segmentation.max_grow_px, 30);
   EXPECT_EQ(s.segmentation.max_grow_px, 12);
+  EXPECT_EQ(s.segmentation.thread_nice, 12);
+  EXPECT_EQ(d.segmentation.thread_nice, 10);
   EXPECT_TRUE(d.segmentation.keyframe_hold);
   EXPECT_FALSE(s.segmentation.keyframe_hold);
   EXPECT_FALSE(d.segmentation.provisional_points);

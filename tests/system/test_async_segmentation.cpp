@@ -116,6 +116,9 @@ TEST(AsyncSegmentation, StatsFieldsPerFrameAndInStatsJson) {
     EXPECT_EQ(frames[i]["keyframe_deferred"].get<bool>(), r.frames[i].keyframe_deferred);
     EXPECT_EQ(frames[i]["fresh_mask_culled"].get<int>(), r.frames[i].fresh_mask_culled);
     EXPECT_TRUE(frames[i]["times_ms"].contains("propagation_cpu"));
+    EXPECT_EQ(frames[i]["times_ms"]["core_wait"].get<double>(), r.frames[i].core_wait_ms);
+    EXPECT_GE(r.frames[i].core_wait_ms, 0.0);
+    EXPECT_LE(r.frames[i].core_wait_ms, r.frames[i].total_ms + 1.0);  // a part of the frame's wall time
     EXPECT_TRUE(frames[i]["times_ms"].contains("latency"));
   }
   const nlohmann::json& masks = stats["summary"]["realtime"]["masks"];

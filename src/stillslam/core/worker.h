@@ -7,6 +7,9 @@
 // everything queued by calling run_pending() at a point of its choosing, on
 // its own thread; no thread is started.
 //
+// Threaded mode can run a hook on the new thread before the first item
+// (e.g. to lower the thread's priority, core/thread_priority.h).
+//
 // Every worker can be paused (the item in progress finishes, the next one
 // waits), stopped (what is queued is still handled, then the thread is
 // joined) or cancelled (what is queued is handed back unhandled).
@@ -29,9 +32,10 @@ class Worker {
  public:
   using Handler = std::function<void(T&)>;
 
-  // capacity 0: unbounded queue (submit never waits).
-  Worker(WorkerMode mode, Handler handler, std::size_t capacity = 0)
-      : mode_(mode), handler_(std::move(handler)), queue_(capacity) {
+  // capacity 0: unbounded queue (submit never waits). on_thread_start:
+  // threaded mode, called first on the worker thread (never in synchronous mode).
+  Worker(WorkerMode mode, Handler handler, std::size_t capacity = 0, std::function<void()> on_thread_start = {})
+      : mode_(mode), handler_(std::move(handler)), on_thread_start_(std::move(on_thread_start)), queue_(capacity) {
     if (mode_ == WorkerMode::Threaded) thread_ = std::thread([this] { run(); });
   }
   ~Worker() { stop(); }
@@ -135,6 +139,7 @@ class Worker {
 
  private:
   void run() {
+    if (on_thread_start_) on_thread_start_();
     while (std::optional<T> item = queue_.pop()) {
       {
         // busy_ is set under the same lock as the pause check, so pause()
@@ -166,6 +171,7 @@ class Worker {
 
   const WorkerMode mode_;
   Handler handler_;
+  std::function<void()> on_thread_start_;
   WorkQueue<T> queue_;
   mutable std::mutex state_mutex_;
   std::condition_variable state_changed_;

@@ -1,8 +1,11 @@
 #include "stillslam/mapping/local_mapper.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 
 #include "stillslam/core/stopwatch.h"
+#include "stillslam/core/thread_priority.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
 #include "stillslam/mapping/keyframe_insertion.h"
 #include "stillslam/mapping/local_bundle_adjustment.h"
@@ -21,6 +24,11 @@ LocalMapper::LocalMapper(Map& map, LocalMapperOptions options)
         abort_ba_ = false;
         abort_cause_ = BundleAdjustmentAbort::None;
         process(job.kf);
+      },
+      0, [nice = options_.thread_nice] {
+        if (const std::string failed = lower_this_thread_priority(nice); !failed.empty()) {
+          spdlog::warn("LocalMapping.threadNice {}: the mapping thread keeps its priority ({})", nice, failed);
+        }
       }) {
   options_.check();
 }

@@ -17,6 +17,10 @@ namespace stillslam {
 
 struct LocalMapperOptions {
   bool threaded = true;
+  // Threaded: LocalMapping.threadNice, the mapping thread's nice value is
+  // raised by this (Linux; 19 at most, core/thread_priority.h), so that
+  // tracking gets a core before it. 0: the process's priority.
+  int thread_nice = 0;
   PointCullingOptions point_culling;
   PointTriangulationOptions triangulation;
   FusionOptions fusion;

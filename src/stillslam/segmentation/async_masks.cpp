@@ -57,6 +57,11 @@ void AsyncMasks::on_tracked(std::size_t frame_index, const std::optional<Eigen::
   if (poses_.size() > 2) poses_.pop_front();
 }
 
+bool AsyncMasks::wants_sparse_depth(std::size_t frame_index) const {
+  const auto kept = submitted_.find(frame_index);
+  return kept != submitted_.end() && kept->second.depth.empty();
+}
+
 std::optional<Eigen::Isometry3d> AsyncMasks::predicted_pose(std::size_t frame_index) const {
   // Constant velocity over consecutive tracked frames; none across gaps.
   if (poses_.size() < 2 || poses_[1].first + 1 != frame_index || poses_[0].first + 1 != poses_[1].first) {

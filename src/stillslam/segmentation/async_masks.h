@@ -72,6 +72,9 @@ class AsyncMasks {
   // propagating from it when it was segmented.
   void on_tracked(std::size_t frame_index, const std::optional<Eigen::Isometry3d>& T_cam_world,
                   cv::Mat1f sparse_depth = {});
+  // on_tracked() would keep a sparse depth for this frame: it went to the
+  // stage without a depth image and the propagator may start from it.
+  bool wants_sparse_depth(std::size_t frame_index) const;
 
   // The next frame gets a segmentation slot if the stage is idle (a keyframe
   // candidate deferred for an old mask, weak tracking).

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "stillslam/core/error.h"
+#include "stillslam/segmentation/mask_grow.h"
 
 namespace stillslam {
 
@@ -37,15 +38,8 @@ std::vector<cv::Mat1b> dynamic_instances(const std::vector<Detection>& detection
 cv::Mat1b dynamic_mask(const std::vector<cv::Mat1b>& instances, cv::Size size, int dilation_px) {
   cv::Mat1b mask(size, uchar{0});
   for (const cv::Mat1b& m : instances) cv::bitwise_or(mask, m, mask);
-  if (dilation_px > 0) {
-    // A true disc (OpenCV's MORPH_ELLIPSE is not one): every pixel within dilation_px of the mask.
-    const int r = dilation_px;
-    cv::Mat1b disc(2 * r + 1, 2 * r + 1, uchar{0});
-    for (int dy = -r; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx)
-        if (dx * dx + dy * dy <= r * r) disc(dy + r, dx + r) = 1;
-    cv::dilate(mask, mask, disc);
-  }
+  // A true disc (OpenCV's MORPH_ELLIPSE is not one): every pixel within dilation_px of the mask.
+  if (dilation_px > 0) return grow_mask(mask, dilation_px);
   return mask;
 }
 

@@ -21,6 +21,7 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.modelled_latency", modelled_latency, 0);
   at_least("SegmentationOptions.urgent_inliers", urgent_inliers, 0);
   at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
+  in_range("SegmentationOptions.thread_nice", thread_nice, 0, 19);
   if (provisional_points && !keyframe_hold) {
     throw OptionError("SegmentationOptions.provisional_points", "1",
                       "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait "

@@ -35,6 +35,12 @@ struct SegmentationOptions {
   bool agnostic_nms = false;
   // Segmentation.mode: sync or async.
   SegmentationMode mode = SegmentationMode::Sync;
+  // Async: Segmentation.threadNice, the segmentation thread's nice value is
+  // raised by this (Linux; 19 at most) so that tracking and local mapping get
+  // a core before it (segmentation_stage.h). 0: the process's priority.
+  // 10 on 2 cores: the tracking thread waited ~40 % less for a core in
+  // --realtime runs (bench/README.md, issue #16).
+  int thread_nice = 10;
   // Async: Segmentation.interval, a frame is segmented at least every this many processed frames.
   // 5: yolo11n-seg costs ~141 CPU-ms per call, 28 per frame at 5 (the 66 CPU-ms of 2 cores at 30 Hz).
   int interval = 5;

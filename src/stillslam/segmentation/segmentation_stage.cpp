@@ -1,11 +1,14 @@
 #include "stillslam/segmentation/segmentation_stage.h"
 
+#include <spdlog/spdlog.h>
+
 #include "stillslam/core/error.h"
+#include "stillslam/core/thread_priority.h"
 
 namespace stillslam {
 
-SegmentationStage::SegmentationStage(DynamicMaskMaker maker, bool threaded)
-    : maker_(std::move(maker)), threaded_(threaded) {
+SegmentationStage::SegmentationStage(DynamicMaskMaker maker, bool threaded, int thread_nice)
+    : maker_(std::move(maker)), threaded_(threaded), thread_nice_(thread_nice) {
   if (threaded_) thread_ = std::thread([this] { run(); });
 }
 
@@ -37,6 +40,9 @@ void SegmentationStage::submit(cv::Mat bgr, std::size_t frame_index) {
 }
 
 void SegmentationStage::run() {
+  if (const std::string failed = lower_this_thread_priority(thread_nice_); !failed.empty()) {
+    spdlog::warn("Segmentation.threadNice {}: the segmentation thread keeps its priority ({})", thread_nice_, failed);
+  }
   while (std::optional<Request> request = mailbox_.take()) segment(*request);
 }
 

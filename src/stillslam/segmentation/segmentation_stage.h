@@ -6,6 +6,11 @@
 // frame builder reads without waiting (latest()); wait_for() is for the frames
 // whose last mask got too old.
 //
+// Threaded, the stage's thread can run at a lower priority than the others
+// (thread_nice: its nice value raised by this, core/thread_priority.h), so
+// that on a busy machine tracking gets a core first and segmentation takes
+// what is left; a failure to lower it is a warning.
+//
 // Not threaded (deterministic runs): submit() segments on the caller's
 // thread at once, so results never depend on timing; the latency is then
 // modelled by the reader (async_masks.h).
@@ -24,7 +29,7 @@ namespace stillslam {
 
 class SegmentationStage {
  public:
-  SegmentationStage(DynamicMaskMaker maker, bool threaded);
+  SegmentationStage(DynamicMaskMaker maker, bool threaded, int thread_nice = 0);
   ~SegmentationStage();  // stop() + join
   SegmentationStage(const SegmentationStage&) = delete;
   SegmentationStage& operator=(const SegmentationStage&) = delete;
@@ -61,6 +66,7 @@ class SegmentationStage {
 
   DynamicMaskMaker maker_;  // on the stage thread only (caller's when not threaded)
   const bool threaded_;
+  const int thread_nice_;
   Mailbox<Request> mailbox_;
   mutable std::mutex mutex_;
   mutable std::condition_variable done_;

@@ -23,6 +23,7 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   keys.flag("bundleAdjustment", options.enable_bundle_adjustment);
   BundleAdjustmentOptions& ba = options.bundle_adjustment;
   keys.integer("baThreads", ba.num_threads, "BundleAdjustmentOptions.num_threads", thread_limits(1));
+  keys.integer("threadNice", options.thread_nice, "LocalMapperOptions.thread_nice", {0, 19});
   keys.integer("baIterations", ba.iterations, "BundleAdjustmentOptions.iterations", {1, 1000});
   keys.integer("baIterationsAfterOutliers", ba.iterations_after_outliers,
                "BundleAdjustmentOptions.iterations_after_outliers", {0, 1000});

@@ -93,6 +93,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("modelledLatency", options.modelled_latency, "SegmentationOptions.modelled_latency", {0, 1000});
   keys.integer("maxGrowPx", options.max_grow_px, "SegmentationOptions.max_grow_px", {0, 1000});
   keys.integer("urgentInliers", options.urgent_inliers, "SegmentationOptions.urgent_inliers", {0, 100000});
+  keys.integer("threadNice", options.thread_nice, "SegmentationOptions.thread_nice", {0, 19});
   keys.flag("freshMaskCull", options.fresh_mask_cull);
   keys.flag("keyframeHold", options.keyframe_hold);
   keys.flag("provisionalPoints", options.provisional_points, "SegmentationOptions.provisional_points");

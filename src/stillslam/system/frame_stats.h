@@ -35,6 +35,9 @@ struct FrameStats {
   double tracking_cpu_ms = 0;  // CPU time of the calling thread in the tracker
   double total_cpu_ms = 0;     // CPU time of the calling thread for the whole frame
                                // (without the segmentation worker / right-image thread)
+  // Of total_ms, the time the calling thread was ready but waited for a core
+  // (core/thread_run_queue_wait.h; 0 where not available).
+  double core_wait_ms = 0;
   double publish_ms = 0;       // snapshots for the publish layer, after total_ms
   // Frame arrival to pose (dataset runner): from when the frame was due
   // (--realtime: its timestamp; else when the runner took it) to the end of

@@ -21,7 +21,7 @@ TimingSummary summarize_times(std::vector<double> v) {
 RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   RunSummary s;
   s.frames = frames.size();
-  std::vector<double> total, tracking, extraction, wait, total_cpu, tracking_cpu, extraction_cpu, propagation_cpu;
+  std::vector<double> total, tracking, extraction, wait, total_cpu, tracking_cpu, extraction_cpu, propagation_cpu, core_wait;
   double before = 0, after = 0, inliers = 0;
   for (const FrameStats& f : frames) {
     s.tracked += f.has_pose ? 1 : 0;
@@ -35,6 +35,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
     tracking_cpu.push_back(f.tracking_cpu_ms);
     extraction_cpu.push_back(f.build.extraction_cpu_ms);
     propagation_cpu.push_back(f.build.propagation_cpu_ms);
+    core_wait.push_back(f.core_wait_ms);
     before += f.build.keypoints_before;
     after += f.build.keypoints_after;
     inliers += f.inliers;
@@ -47,6 +48,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames) {
   s.tracking_cpu_ms = summarize_times(tracking_cpu);
   s.extraction_cpu_ms = summarize_times(extraction_cpu);
   s.propagation_cpu_ms = summarize_times(propagation_cpu);
+  s.core_wait_ms = summarize_times(core_wait);
   s.extraction_share = s.total_ms.mean > 0 ? s.extraction_ms.mean / s.total_ms.mean : 0;
   if (!frames.empty()) {
     const double n = static_cast<double>(frames.size());
@@ -168,6 +170,7 @@ nlohmann::json to_json(const FrameStats& f) {
             {"propagation_cpu", f.build.propagation_cpu_ms},
             {"tracking_cpu", f.tracking_cpu_ms},
             {"total_cpu", f.total_cpu_ms},
+            {"core_wait", f.core_wait_ms},
             {"publish", f.publish_ms},
             {"latency", f.latency_ms}}},
           {"loops_closed", f.loops_closed},
@@ -195,7 +198,8 @@ nlohmann::json to_json(const RunSummary& s) {
             {"total_cpu", to_json(s.total_cpu_ms)},
             {"tracking_cpu", to_json(s.tracking_cpu_ms)},
             {"extraction_cpu", to_json(s.extraction_cpu_ms)},
-            {"propagation_cpu", to_json(s.propagation_cpu_ms)}}},
+            {"propagation_cpu", to_json(s.propagation_cpu_ms)},
+            {"core_wait", to_json(s.core_wait_ms)}}},
           {"extraction_share", s.extraction_share}};
 }
 

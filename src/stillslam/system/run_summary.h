@@ -23,6 +23,7 @@ struct RunSummary {
   TimingSummary total_ms, tracking_ms, extraction_ms, segmentation_wait_ms;
   TimingSummary total_cpu_ms, tracking_cpu_ms, extraction_cpu_ms;  // calling thread's CPU time
   TimingSummary propagation_cpu_ms;  // async segmentation: carrying masks (calling thread's CPU)
+  TimingSummary core_wait_ms;        // of total_ms, waiting for a core (FrameStats::core_wait_ms)
   double extraction_share = 0;  // mean extraction / mean total
   double mean_keypoints_before = 0, mean_keypoints_after = 0, mean_inliers = 0;
   double tracked_ratio() const { return frames ? static_cast<double>(tracked) / frames : 0.0; }

@@ -9,6 +9,7 @@
 #include "stillslam/core/shipped_files.h"
 #include "stillslam/core/stopwatch.h"
 #include "stillslam/core/thread_cpu_stopwatch.h"
+#include "stillslam/core/thread_run_queue_wait.h"
 #include "stillslam/publish/map_snapshot.h"
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
@@ -108,7 +109,7 @@ void System::build_pipeline(const Settings& settings) {
     if (async) {
       segmentation_stage_ = std::make_unique<SegmentationStage>(
           DynamicMaskMaker(std::move(segmenter), dynamic_class_ids_, settings.segmentation.mask_dilation, hold),
-          mode == WorkerMode::Threaded);
+          mode == WorkerMode::Threaded, settings.segmentation.thread_nice);
       const PinholeCamera& camera = setup_->camera;
       MaskPropagator propagator(MaskPropagationCamera{camera.fx(), camera.fy(), camera.cx(), camera.cy()},
                                 settings.mask_propagation);
@@ -455,6 +456,7 @@ bool System::merge_into(Map& target, const LoopDetection& detection) {
 FrameStats System::process(const SensorFrame& input) {
   Stopwatch total;
   ThreadCpuStopwatch total_cpu;
+  const std::optional<double> core_wait_before = this_thread_run_queue_wait_ms();
   FrameStats stats;
   stats.index = input.index;
   stats.timestamp = input.timestamp;
@@ -510,7 +512,7 @@ FrameStats System::process(const SensorFrame& input) {
     std::optional<Eigen::Isometry3d> pose;
     if (result.state == TrackingState::Ok && frame.has_pose()) pose = frame.T_cam_world();
     cv::Mat1f sparse_depth;
-    if (sensor_ == SensorType::Stereo) {
+    if (sensor_ == SensorType::Stereo && async_masks_->wants_sparse_depth(input.index)) {
       // Mask propagation from this frame, if it was segmented, needs depth.
       sparse_depth = cv::Mat1f::zeros(input.gray.size());
       for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -567,6 +569,9 @@ FrameStats System::process(const SensorFrame& input) {
   }
   stats.total_ms = total.elapsed_ms();
   stats.total_cpu_ms = total_cpu.elapsed_ms();
+  if (const std::optional<double> core_wait = this_thread_run_queue_wait_ms(); core_wait && core_wait_before) {
+    stats.core_wait_ms = *core_wait - *core_wait_before;
+  }
   Stopwatch publishing;
   publish(input, frame, stats, std::move(dynamics));
   stats.publish_ms = publishing.elapsed_ms();
