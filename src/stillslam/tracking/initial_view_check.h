@@ -56,6 +56,7 @@ struct InitialViewCheck {
   int moving = 0;          // of those, disagreeing with the camera motion
   std::vector<bool> keep;  // per first-frame keypoint: may become a map point
   std::vector<bool> confirmed;  // per first-frame keypoint: matched in the next frame, agreeing with the motion
+  std::vector<bool> matched;    // per first-frame keypoint: matched in the next frame (with depth)
   // When accepted: the next frame's pose relative to the first (PnP RANSAC).
   Eigen::Isometry3d T_next_first = Eigen::Isometry3d::Identity();
 };

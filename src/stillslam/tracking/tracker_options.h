@@ -32,6 +32,14 @@ struct TrackerOptions {
   // is made where a match was rejected or that the previous frame did not
   // see in place (tracking/start_evidence.h). 0: the start check alone.
   int init_unmasked_trust_frames = 10;
+  // The check leaves points out of the first keyframe only when it finds
+  // something moving: of the first-frame points the confirming frames
+  // matched, at least this share, and at least init_unmasked_moving_points of
+  // them, found moving by one of the frames. Otherwise the whole first
+  // keyframe is kept as a start without the check keeps it (no trust window
+  // either); only the wait differs. 0 and 0: always filtered.
+  double init_unmasked_moving_share = 0;
+  int init_unmasked_moving_points = 0;
   int init_wait_frames = 30;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
