@@ -179,7 +179,9 @@ TEST(InitialViewCheck, UnmaskedMovingBoundScalesWithThePyramidLevel) {
     return n;
   };
 
-  const InitialViewCheck coarse = check_initial_view(first, with_levels(next_exact, off, 6), {});
+  InitialViewCheckOptions unit;  // the moving bound: 1 px x the level's scale
+  unit.moving_factor_unmasked = 1;
+  const InitialViewCheck coarse = check_initial_view(first, with_levels(next_exact, off, 6), unit);
   ASSERT_TRUE(coarse.accepted) << coarse.reason;
   auto n = count(coarse);
   EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);
@@ -188,7 +190,7 @@ TEST(InitialViewCheck, UnmaskedMovingBoundScalesWithThePyramidLevel) {
   EXPECT_LT(n[Mover][1], 0.02 * n[Mover][0]);  // a mover that left the view has no match to judge it by
   EXPECT_EQ(n[Mover][2], 0);
 
-  const InitialViewCheck fine = check_initial_view(first, with_levels(next_exact, off, 0), {});
+  const InitialViewCheck fine = check_initial_view(first, with_levels(next_exact, off, 0), unit);
   ASSERT_TRUE(fine.accepted) << fine.reason;
   n = count(fine);
   EXPECT_GT(n[Exact][2], 0.9 * n[Exact][0]);

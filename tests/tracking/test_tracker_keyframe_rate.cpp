@@ -21,6 +21,7 @@ struct RateRun {
 // registration does) and is always idle.
 RateRun keyframes_made(TrackerOptions options, int frames) {
   options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 0;  // every frame tracked from the first (start check: test_tracker_start_unmasked.cpp)
   // Every frame wants a keyframe (the RGB-D rule "too few close points
   // tracked", as on the RGB-D renders), so only the budget limits them.
   options.close_points_tracked_min = 50000;

@@ -2,8 +2,12 @@
 // first keyframe waits for the next frames' geometric check and takes none of
 // the walkers' points; the velocity after the start is per frame; in the
 // frames after the start the keyframes take no walkers' points either
-// (tracking/start_evidence.h).
+// (tracking/start_evidence.h). Where the check finds less than
+// initUnmaskedMovingShare of the view moving, the first keyframe is kept
+// whole, as a start without the check keeps it.
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "map/synthetic_scene.h"
 #include "stillslam/tracking/tracker.h"
@@ -11,7 +15,7 @@
 namespace stillslam {
 namespace {
 
-constexpr std::size_t kMovers = 850;  // scene points 0..849 of 2500 walk 5 cm a frame
+constexpr std::size_t kMovers = 850;  // scene points 0..849 of 2500 walk 5 cm a frame (by default)
 
 struct Start {
   int waiting_frames = 0;
@@ -22,15 +26,18 @@ struct Start {
   int later_keyframes = 0;     // keyframes after the first
   int later_points = 0;        // map points those made from depth
   int later_movers = 0;        // of those, on walkers
+  std::string start_reason;    // the reason of the frame the map started at
 };
 
-Start run(int confirm_frames, int trust_frames = 10, int frames = 6, bool keyframe_each_frame = false) {
+Start run(int confirm_frames, int trust_frames = 10, int frames = 6, bool keyframe_each_frame = false,
+          std::size_t movers = kMovers, double moving_share = 0) {
   test::SyntheticScene scene(2500);
   Map map;
   TrackerOptions options;
   options.init_min_keypoints = 300;
   options.init_unmasked_confirm_frames = confirm_frames;
   options.init_unmasked_trust_frames = trust_frames;
+  options.init_unmasked_moving_share = moving_share;
   if (keyframe_each_frame) {  // any untracked close point asks for one, no budget
     options.close_points_tracked_min = 100000;
     options.close_points_untracked_min = 0;
@@ -46,16 +53,17 @@ Start run(int confirm_frames, int trust_frames = 10, int frames = 6, bool keyfra
     const TrackingResult r = tracker.track(f);
     if (r.state == TrackingState::NotInitialized) ++out.waiting_frames;
     if (!started && map.num_keyframes() > 0) {
+      out.start_reason = r.reason;
       const KeyFramePtr kf = map.keyframes().front();
       out.first_keyframe_frame = kf->frame_id();
       for (std::size_t i = 0; kf->frame_id() == 0 && i < kf->size(); ++i) {
         if (!kf->map_point(i)) continue;
         ++out.first_keyframe_points;
-        out.first_keyframe_movers += first_point[i] < kMovers ? 1 : 0;
+        out.first_keyframe_movers += first_point[i] < movers ? 1 : 0;
       }
     }
     if (k == confirm_frames + 1) out.next_offset = r.motion_prior.offset;
-    for (std::size_t i = 0; i < kMovers; ++i) scene.move_point(i, Eigen::Vector3d(0.05, 0, 0));
+    for (std::size_t i = 0; i < movers; ++i) scene.move_point(i, Eigen::Vector3d(0.05, 0, 0));
   }
   for (const KeyFramePtr& kf : map.keyframes()) {
     if (kf->frame_id() == 0) continue;
@@ -64,7 +72,7 @@ Start run(int confirm_frames, int trust_frames = 10, int frames = 6, bool keyfra
       const MapPointPtr& mp = kf->map_point(i);
       if (!mp || mp->first_keyframe_id() != kf->id()) continue;
       ++out.later_points;
-      out.later_movers += scene_point[kf->frame_id()][i] < kMovers ? 1 : 0;
+      out.later_movers += scene_point[kf->frame_id()][i] < movers ? 1 : 0;
     }
   }
   return out;
@@ -101,6 +109,36 @@ TEST(TrackerStartUnmasked, TheFramesAfterTheStartTakeNoWalkersPoints) {
   // With it, the static ones only (the previous frame saw them in place).
   EXPECT_GT(trusted.later_points, 0);
   EXPECT_EQ(trusted.later_movers, 0);
+}
+
+TEST(TrackerStartUnmasked, TheGateKeepsTheFirstKeyFrameWholeWhereLittleMoves) {
+  // Nothing moves: with the gate the first keyframe holds every point a start
+  // without the check makes; the check alone keeps only the confirmed ones.
+  const Start whole = run(0, 10, 6, false, 0);
+  const Start gated = run(3, 10, 6, false, 0, 0.05);
+  const Start filtered = run(3, 10, 6, false, 0, 0);
+  EXPECT_EQ(gated.waiting_frames, 3);
+  EXPECT_EQ(gated.first_keyframe_frame, 0u);
+  EXPECT_EQ(gated.first_keyframe_points, whole.first_keyframe_points);
+  EXPECT_LT(filtered.first_keyframe_points, whole.first_keyframe_points);
+  EXPECT_NE(gated.start_reason.find("0 of "), std::string::npos) << gated.start_reason;
+  EXPECT_NE(gated.start_reason.find("kept whole"), std::string::npos) << gated.start_reason;
+
+  // 50 of 2500 points walk (about 2 % of the matched ones): under a 5 % gate
+  // the walkers stay in with the rest; under a 1 % gate they are left out.
+  const Start few_whole = run(0, 10, 6, false, 50);
+  const Start few_gated = run(3, 10, 6, false, 50, 0.05);
+  const Start few_filtered = run(3, 10, 6, false, 50, 0.01);
+  EXPECT_GT(few_whole.first_keyframe_movers, 10);
+  EXPECT_EQ(few_gated.first_keyframe_points, few_whole.first_keyframe_points);
+  EXPECT_EQ(few_gated.first_keyframe_movers, few_whole.first_keyframe_movers);
+  EXPECT_EQ(few_filtered.first_keyframe_movers, 0);
+  EXPECT_NE(few_filtered.start_reason.find("left out"), std::string::npos) << few_filtered.start_reason;
+
+  // A third of the view walks: the gate lets the check filter, no walker gets in.
+  const Start walkers = run(3, 10, 6, false, kMovers, 0.05);
+  EXPECT_EQ(walkers.first_keyframe_movers, 0);
+  EXPECT_GT(walkers.first_keyframe_points, 0);
 }
 
 }  // namespace

@@ -14,6 +14,10 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
                "TrackerOptions.init_unmasked_confirm_frames", {0, 100});
   keys.integer("initUnmaskedTrustFrames", tracker.init_unmasked_trust_frames,
                "TrackerOptions.init_unmasked_trust_frames", {0, 1000});
+  keys.number("initUnmaskedMovingShare", tracker.init_unmasked_moving_share,
+              "TrackerOptions.init_unmasked_moving_share", {0, 1});
+  keys.integer("initUnmaskedMovingPoints", tracker.init_unmasked_moving_points,
+               "TrackerOptions.init_unmasked_moving_points", {0, 100000});
   keys.integer("initWaitFrames", tracker.init_wait_frames, "TrackerOptions.init_wait_frames", {0, 100000});
   InitialViewCheckOptions& view = tracker.initial_view;
   keys.number("initMaxMaskedFraction", view.max_masked_fraction, "InitialViewCheckOptions.max_masked_fraction", {0, 1});

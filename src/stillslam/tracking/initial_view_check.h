@@ -19,7 +19,9 @@
 // against movers nothing marks: the first frame is rejected only when the
 // camera motion does not hold most of the matches (max_moving_share_unmasked);
 // the tracker then keeps only keypoints that some confirming frame matched
-// as inliers (`confirmed`) and none found moving (`keep`).
+// as inliers (`confirmed`) and none found moving (`keep`), when enough of the
+// matched keypoints (`matched`) were found moving
+// (TrackerOptions::init_unmasked_moving_share), else all of them.
 #include <Eigen/Geometry>
 
 #include <string>
@@ -44,7 +46,7 @@ struct InitialViewCheckOptions {
   // coarser keypoint's pyramid level (confirming stays within the unscaled
   // bound). 2.45 = sqrt(5.991) would be ORB-SLAM3's 95 % chi-square test
   // with the bound as one sigma.
-  double moving_factor_unmasked = 1.0;
+  double moving_factor_unmasked = 2.0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -56,6 +58,7 @@ struct InitialViewCheck {
   int moving = 0;          // of those, disagreeing with the camera motion
   std::vector<bool> keep;  // per first-frame keypoint: may become a map point
   std::vector<bool> confirmed;  // per first-frame keypoint: matched in the next frame, agreeing with the motion
+  std::vector<bool> matched;    // per first-frame keypoint: matched in the next frame (with depth)
   // When accepted: the next frame's pose relative to the first (PnP RANSAC).
   Eigen::Isometry3d T_next_first = Eigen::Isometry3d::Identity();
 };

@@ -53,6 +53,8 @@ void Tracker::start_new_map(Map& map) {
   was_lost_ = false;
   start_candidate_.reset();
   start_keep_.clear();
+  start_confirmed_.clear();
+  start_matched_.clear();
   last_frame_left_out_.clear();
   start_confirmations_ = 0;
   start_frames_rejected_ = 0;
@@ -70,6 +72,7 @@ void Tracker::localize_in(Map& map) {
 TrackingResult Tracker::track(Frame& frame) {
   std::lock_guard<std::mutex> lock(map_->update_mutex());
   TrackingResult result;
+  std::string start_note;  // how the map started, when it started from an earlier frame at this one
   if (state_ == TrackingState::NotInitialized) {
     if (options_.localization_only) {
       result.state = state_;
@@ -92,6 +95,8 @@ TrackingResult Tracker::track(Frame& frame) {
       return result;
     }
     // Started from an earlier frame: this one is tracked against it.
+    start_note = std::move(result.reason);
+    result.reason.clear();
   }
 
   update_last_frame();
@@ -156,6 +161,7 @@ TrackingResult Tracker::track(Frame& frame) {
     velocity_.reset();
     if (result.reason.empty()) result.reason = "lost";
   }
+  if (!start_note.empty()) result.reason = start_note + "; " + result.reason;
   result.state = state_;
   return result;
 }
@@ -215,15 +221,30 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
       for (std::size_t i = 0; i < start_keep_.size(); ++i) {
         start_keep_[i] = start_keep_[i] && check.keep[i];
         start_confirmed_[i] = start_confirmed_[i] || check.confirmed[i];
+        start_matched_[i] = start_matched_[i] || check.matched[i];
       }
+      const auto [matched, moving] = start_tally();
+      const std::string tally = std::to_string(moving) + " of " + std::to_string(matched) +
+                                " matched first-frame points found moving";
       if (++start_confirmations_ >= confirm_frames) {
         Frame first = std::move(*start_candidate_);
-        // Without masks a point nothing confirmed may be a mover no frame matched.
-        std::vector<bool> keep = std::move(start_keep_);
-        for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
+        // Without masks the check filters only when it found something moving.
+        const bool filter = !unmasked || (moving >= options_.init_unmasked_moving_points &&
+                                          moving >= options_.init_unmasked_moving_share * matched);
+        std::vector<bool> keep;
+        if (filter) {
+          keep = std::move(start_keep_);
+          // Without masks a point nothing confirmed may be a mover no frame matched.
+          for (std::size_t i = 0; unmasked && i < keep.size(); ++i) keep[i] = keep[i] && start_confirmed_[i];
+        }
+        const std::uint64_t first_id = first.id();
         start_candidate_.reset();
         initialize(first, frame, keep);
-        if (unmasked && options_.init_unmasked_trust_frames > 0) {
+        if (unmasked) {
+          result.reason = "map started at frame " + std::to_string(first_id) + ", " + tally +
+                          (filter ? ": left out of the first keyframe" : ": first keyframe kept whole");
+        }
+        if (unmasked && filter && options_.init_unmasked_trust_frames > 0) {
           start_evidence_.begin(reference_keyframe_->map_points(),
                                 frame.id() + static_cast<std::uint64_t>(options_.init_unmasked_trust_frames));
         }
@@ -234,7 +255,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         return Start::FromAnEarlierFrame;
       }
       result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
-                      std::to_string(confirm_frames) + " frames";
+                      std::to_string(confirm_frames) + " frames" + (unmasked ? ", " + tally : "");
       return Start::Waiting;
     }
     ++start_frames_rejected_;
@@ -251,8 +272,19 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   start_candidate_ = frame;
   start_keep_.assign(frame.size(), true);
   start_confirmed_.assign(frame.size(), false);
+  start_matched_.assign(frame.size(), false);
   start_confirmations_ = 0;
   return Start::Waiting;
+}
+
+std::pair<int, int> Tracker::start_tally() const {
+  int matched = 0, moving = 0;
+  for (std::size_t i = 0; i < start_matched_.size(); ++i) {
+    if (!start_matched_[i]) continue;
+    ++matched;
+    if (!start_keep_[i]) ++moving;
+  }
+  return {matched, moving};
 }
 
 void Tracker::initialize(Frame& frame, const Frame& tracked, const std::vector<bool>& keep) {

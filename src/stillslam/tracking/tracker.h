@@ -99,6 +99,8 @@ class Tracker {
   // from this frame; after tracking, the pose of a sparse view (returns
   // whether the frame has one).
   bool refuse_sparse_start(const Frame& frame, TrackingResult& result);
+  // Of the start candidate's points the confirming frames matched so far: how many, and how many some frame found moving.
+  std::pair<int, int> start_tally() const;
   bool sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok);
   int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
   void update_last_frame();
@@ -134,6 +136,7 @@ class Tracker {
   std::optional<Frame> start_candidate_;
   std::vector<bool> start_keep_;
   std::vector<bool> start_confirmed_;  // matched as an inlier by some confirming frame
+  std::vector<bool> start_matched_;    // matched (with depth) by some confirming frame
   // Keypoints of last_frame_ that give no visual-odometry point (the map's
   // first frame: those its start check left out).
   std::vector<bool> last_frame_left_out_;

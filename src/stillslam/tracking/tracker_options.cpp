@@ -16,6 +16,8 @@ void TrackerOptions::check() const {
   at_least("TrackerOptions.init_confirm_frames", init_confirm_frames, 0);
   at_least("TrackerOptions.init_unmasked_confirm_frames", init_unmasked_confirm_frames, 0);
   in_range("TrackerOptions.init_unmasked_trust_frames", init_unmasked_trust_frames, 0, 1000);
+  in_range("TrackerOptions.init_unmasked_moving_share", init_unmasked_moving_share, 0, 1);
+  in_range("TrackerOptions.init_unmasked_moving_points", init_unmasked_moving_points, 0, 100000);
   at_least("TrackerOptions.init_wait_frames", init_wait_frames, 0);
   at_least("TrackerOptions.max_frames_between_keyframes", max_frames_between_keyframes, 0);
   in_range("TrackerOptions.min_frames_between_keyframes", min_frames_between_keyframes, 0,
