@@ -25,6 +25,7 @@ void LocalMapperOptions::check() const {
   window.check();
   busy.check();
   option_check::in_range("LocalMapperOptions.iterations_before_interrupt", iterations_before_interrupt, 0, 100);
+  option_check::in_range("LocalMapperOptions.bundle_adjustments_per_second", bundle_adjustments_per_second, 0, 1000);
 }
 
 }  // namespace stillslam
