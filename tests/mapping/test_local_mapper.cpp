@@ -129,6 +129,51 @@ TEST(LocalMapper, OneWaitingKeyframeKeepsTheBundleAdjustmentABacklogSkipsIt) {
   }
 }
 
+// LocalMapping.bundleAdjustmentsPerSecond: keyframes 0.1 s apart with at most
+// 4 BAs per second get a BA 0.3 s apart (the first, then the fourth); without
+// it every keyframe gets one.
+TEST(LocalMapper, BundleAdjustmentsPerSecondSkipsTheKeyframesBetween) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 8; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.05 * k)));
+  ASSERT_DOUBLE_EQ(kfs[2]->timestamp(), 0.2);
+  for (double rate : {0.0, 4.0}) {
+    Recorded rec;
+    LocalMapperOptions o = options_recording(rec, false);
+    o.enable_bundle_adjustment = true;
+    o.enable_keyframe_culling = false;
+    o.bundle_adjustments_per_second = rate;
+    LocalMapper mapper(builder.map(), o);
+    std::vector<int> bundle_adjustments;  // after each keyframe
+    for (std::size_t k = 2; k < 8; ++k) {
+      mapper.insert_keyframe(kfs[k]);
+      mapper.process_pending();
+      bundle_adjustments.push_back(mapper.stats().bundle_adjustments);
+    }
+    const LocalMapperStats stats = mapper.stats();
+    EXPECT_EQ(stats.keyframes, 6);
+    if (rate == 0) {
+      EXPECT_EQ(bundle_adjustments, (std::vector<int>{1, 2, 3, 4, 5, 6}));
+      EXPECT_EQ(stats.bundle_adjustments_skipped, 0);
+    } else {
+      // BAs at 0.2 s and 0.5 s (0.3 >= 1 / 4), none at 0.3, 0.4 (< 0.25 s after 0.2), 0.6, 0.7.
+      EXPECT_EQ(bundle_adjustments, (std::vector<int>{1, 1, 1, 2, 2, 2}));
+      EXPECT_EQ(stats.bundle_adjustments_skipped, 4);
+    }
+    EXPECT_EQ(static_cast<int>(stats.bundle_adjustment_runs.size()), stats.bundle_adjustments);
+  }
+  // Out of range: the error names the field.
+  LocalMapperOptions bad;
+  bad.bundle_adjustments_per_second = -1;
+  try {
+    bad.check();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "LocalMapperOptions.bundle_adjustments_per_second");
+  }
+}
+
 // Synchronous mapping is never busy when tracking asks; the busy model makes
 // it look busy for each keyframe's modelled cost from the keyframe's
 // timestamp on, and a keyframe arriving meanwhile waits behind it.

@@ -145,6 +145,8 @@ const std::vector<Case> kSectionCases = {
     {"LocalMapping.baIterationsAfterOutliers", "1e6", "is 1000000: must be in [0, 1000]"},
     {"LocalMapping.baFunctionTolerance", "2", "is 2: must be in [0, 1]"},
     {"LocalMapping.baMaxSeconds", "-1", "is -1: must be in [0, 60]"},
+    {"LocalMapping.bundleAdjustmentsPerSecond", "-1", "is -1: must be in [0, 1000]"},
+    {"LocalMapping.bundleAdjustmentsPerSecond", "2000", "is 2000: must be in [0, 1000]"},
     {"LocalMapping.windowKeyframes", "-1", "is -1: must be in [0, 1000]"},
     {"LocalMapping.windowObservations", "6000000", "is 6000000: must be in [0, 5000000]"},
     {"LocalMapping.triangulationNeighbours", "0", "is 0: must be in [1, 1000]"},

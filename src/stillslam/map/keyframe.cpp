@@ -18,6 +18,7 @@ KeyFrame::KeyFrame(std::uint64_t id, const Frame& frame)
       timestamp_(frame.timestamp()),
       setup_(frame.setup_ptr()),
       T_cam_world_(frame.T_cam_world()),
+      T_world_cam_(T_cam_world_.inverse()),
       keypoints_(frame.keypoints()),
       descriptors_(frame.descriptors()),
       u_right_(frame.u_right()),

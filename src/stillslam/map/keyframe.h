@@ -33,9 +33,14 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
 
   // Pose.
   const Eigen::Isometry3d& T_cam_world() const { return T_cam_world_; }
-  Eigen::Isometry3d T_world_cam() const { return T_cam_world_.inverse(); }
-  Eigen::Vector3d camera_center() const { return T_world_cam().translation(); }
-  void set_pose(const Eigen::Isometry3d& T_cam_world) { T_cam_world_ = T_cam_world; }
+  // The inverse is kept with the pose: mapping asks for camera centres far
+  // more often than poses change.
+  Eigen::Isometry3d T_world_cam() const { return T_world_cam_; }
+  Eigen::Vector3d camera_center() const { return T_world_cam_.translation(); }
+  void set_pose(const Eigen::Isometry3d& T_cam_world) {
+    T_cam_world_ = T_cam_world;
+    T_world_cam_ = T_cam_world.inverse();
+  }
   // For a culled keyframe, its pose through the spanning tree (the parent's
   // current pose and the relative pose at culling time); else the pose.
   Eigen::Isometry3d T_cam_world_resolved() const;
@@ -107,6 +112,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   double timestamp_;
   std::shared_ptr<const CameraSetup> setup_;
   Eigen::Isometry3d T_cam_world_;
+  Eigen::Isometry3d T_world_cam_;  // T_cam_world_.inverse(), set with it
   std::vector<cv::KeyPoint> keypoints_;
   cv::Mat descriptors_;
   std::vector<float> u_right_, depth_;

@@ -37,6 +37,7 @@ std::ptrdiff_t MapPoint::index_in(const KeyFrame* kf) const {
 void MapPoint::add_observation(KeyFrame* kf, std::size_t index) {
   if (!observations_.emplace(kf, index).second) return;
   num_observations_ += kf->u_right(index) >= 0 ? 2 : 1;
+  descriptor_from_ = -1;
 }
 
 void MapPoint::erase_observation(KeyFrame* kf) {
@@ -44,6 +45,7 @@ void MapPoint::erase_observation(KeyFrame* kf) {
   if (it == observations_.end()) return;
   num_observations_ -= kf->u_right(it->second) >= 0 ? 2 : 1;
   observations_.erase(it);
+  descriptor_from_ = -1;
   if (reference_ == kf) reference_ = observations_.empty() ? nullptr : observations_.begin()->first;
   if (num_observations_ <= 2) set_bad();
 }
@@ -59,6 +61,7 @@ void MapPoint::compute_distinctive_descriptor() {
     if (!kf->is_bad()) descriptors.push_back(kf->descriptor(idx));
   }
   if (descriptors.empty()) return;
+  if (descriptor_from_ == static_cast<int>(descriptors.size())) return;
   const std::size_t n = descriptors.size();
   distances.assign(n * n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -82,6 +85,7 @@ void MapPoint::compute_distinctive_descriptor() {
     }
   }
   std::memcpy(descriptor_.data(), descriptors[best], descriptor_.size());
+  descriptor_from_ = static_cast<int>(n);
 }
 
 void MapPoint::update_normal_and_depth(const ScalePyramid& pyramid) {
@@ -109,6 +113,7 @@ void MapPoint::set_bad() {
   const Observations observations = std::move(observations_);
   observations_.clear();
   num_observations_ = 0;
+  descriptor_from_ = -1;
   for (const auto& [kf, idx] : observations) kf->erase_map_point(idx);
 }
 
@@ -118,6 +123,7 @@ void MapPoint::replace_with(const std::shared_ptr<MapPoint>& other) {
   const Observations observations = std::move(observations_);
   observations_.clear();
   num_observations_ = 0;
+  descriptor_from_ = -1;
   bad_ = true;
   replaced_by_ = other;
   for (const auto& [kf, idx] : observations) {

@@ -38,7 +38,10 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // Representative descriptor (32 bytes).
   const std::uint8_t* descriptor() const { return descriptor_.data(); }
   // For points without observations (tracking's temporary odometry points).
-  void set_descriptor(const std::uint8_t* d) { std::copy(d, d + descriptor_.size(), descriptor_.begin()); }
+  void set_descriptor(const std::uint8_t* d) {
+    std::copy(d, d + descriptor_.size(), descriptor_.begin());
+    descriptor_from_ = -1;
+  }
   // Scale-invariance distance range (ORB-SLAM: the point can be matched when
   // seen from a distance inside [min, max]).
   double min_distance() const { return 0.8 * min_distance_; }
@@ -80,7 +83,9 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   void mark_on_dynamic_instance() { on_dynamic_instance_ = true; }
 
   // Recomputes the representative descriptor: the observation descriptor with
-  // the least median Hamming distance to all others.
+  // the least median Hamming distance to all others. Returns at once when the
+  // observations (and which of their keyframes are bad) are those of the last
+  // computation.
   void compute_distinctive_descriptor();
   // Recomputes normal and min/max distances from the observations.
   void update_normal_and_depth(const ScalePyramid& pyramid);
@@ -116,6 +121,11 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   Eigen::Vector3d position_;
   Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();
   std::array<std::uint8_t, 32> descriptor_{};
+  // Observation descriptors (of keyframes not bad) descriptor_ was computed
+  // from; -1 after any change of the observations or of descriptor_.
+  // Keyframes never stop being bad, so with unchanged observations the same
+  // count means the same descriptors.
+  int descriptor_from_ = -1;
   double min_distance_ = 0, max_distance_ = 0;
   Observations observations_;
   int num_observations_ = 0;

@@ -91,6 +91,13 @@ LocalMapperStats LocalMapper::stats() const {
   return stats_;
 }
 
+bool LocalMapper::bundle_adjustment_due(const KeyFrame& kf) const {
+  const double rate = options_.bundle_adjustments_per_second;
+  if (rate <= 0 || !last_bundle_adjustment_timestamp_) return true;
+  const double since = kf.timestamp() - *last_bundle_adjustment_timestamp_;
+  return since < 0 || since * rate >= 1;  // time going backwards: another input
+}
+
 void LocalMapper::process(const KeyFramePtr& kf) {
   Stopwatch total;
   ThreadCpuStopwatch cpu;
@@ -124,7 +131,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
   }
   next_step(step.fusion);
   int ba_observations = 0, ba_iterations = 0;  // for the busy model
-  const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry();
+  const bool run_bundle_adjustment = options_.enable_bundle_adjustment && !hurry() && bundle_adjustment_due(*kf);
   if (options_.enable_bundle_adjustment && !run_bundle_adjustment) delta.bundle_adjustments_skipped = 1;
   if (run_bundle_adjustment) {
     LocalBundleAdjustmentProblem problem;
@@ -133,6 +140,7 @@ void LocalMapper::process(const KeyFramePtr& kf) {
       if (map_->num_keyframes() > 2) problem = gather_local_window(*kf, options_.window);
     }
     if (!problem.keyframes.empty()) {
+      last_bundle_adjustment_timestamp_ = kf->timestamp();
       if (options_.on_bundle_adjustment_start) options_.on_bundle_adjustment_start();
       Stopwatch ba;
       ThreadCpuStopwatch ba_cpu;

@@ -13,6 +13,7 @@
 // (the atlas' new or merged map) once it is idle.
 #include <atomic>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "stillslam/core/worker.h"
@@ -76,6 +77,8 @@ class LocalMapper {
   void fuse(const KeyFramePtr& kf);
   // Sets abort_ba_; the first cause since the keyframe started is kept.
   void abort(BundleAdjustmentAbort cause);
+  // The keyframe may have a local BA under options_.bundle_adjustments_per_second.
+  bool bundle_adjustment_due(const KeyFrame& kf) const;
 
   bool uses_busy_model() const { return options_.busy_model && (!options_.threaded || options_.busy_model_threaded); }
 
@@ -86,6 +89,7 @@ class LocalMapper {
   std::atomic<bool> abort_ba_{false};
   std::atomic<BundleAdjustmentAbort> abort_cause_{BundleAdjustmentAbort::None};
   std::vector<MapPointPtr> recent_points_;
+  std::optional<double> last_bundle_adjustment_timestamp_;  // of the last local BA's keyframe (mapping thread only)
   mutable std::mutex stats_mutex_;
   LocalMapperStats stats_;
   Worker<Job> worker_;  // last: its thread starts after the members above exist

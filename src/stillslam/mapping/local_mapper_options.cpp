@@ -26,6 +26,7 @@ void LocalMapperOptions::check() const {
   busy.check();
   option_check::in_range("LocalMapperOptions.iterations_before_interrupt", iterations_before_interrupt, 0, 100);
   option_check::in_range("LocalMapperOptions.thread_nice", thread_nice, 0, 19);
+  option_check::in_range("LocalMapperOptions.bundle_adjustments_per_second", bundle_adjustments_per_second, 0, 1000);
 }
 
 }  // namespace stillslam

@@ -28,6 +28,11 @@ struct LocalMapperOptions {
   BundleAdjustmentOptions bundle_adjustment = default_bundle_adjustment();
   LocalWindowOptions window;
   bool enable_bundle_adjustment = true;
+  // Local BAs per second of input (keyframe timestamps), 0: every keyframe.
+  // A keyframe less than 1 / bundle_adjustments_per_second seconds after the
+  // last local BA's keyframe gets none (counted as skipped); the next BA's
+  // window holds it. Lets more keyframes in at a bounded BA cost.
+  double bundle_adjustments_per_second = 0;
   bool enable_keyframe_culling = true;
   // Loop closing's pause(): false lets the keyframe in progress finish with
   // its BA (the loop waits for it); true aborts that BA, as before 2026-12-02
@@ -119,7 +124,7 @@ struct LocalMapperStats {
   int bundle_adjustments_aborted_by_pause = 0;     // loop closing paused the mapper
   int bundle_adjustments_cut_short = 0;  // aborted, the progress so far applied
   int bundle_adjustments_discarded = 0;  // aborted before any accepted step was kept
-  int bundle_adjustments_skipped = 0;  // hurried keyframes (see local_mapper.cpp)
+  int bundle_adjustments_skipped = 0;  // hurried keyframes (see local_mapper.cpp) and those over bundle_adjustments_per_second
   double bundle_adjustment_ms = 0;  // total
   double total_ms = 0;              // total processing time
   double cpu_ms = 0;                // mapping thread's CPU time (Ceres threads beyond the first not counted)

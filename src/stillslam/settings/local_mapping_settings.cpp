@@ -31,6 +31,8 @@ void bind_local_mapping(const YamlReader& yaml, LocalMapperOptions& options) {
   keys.flag("baSplitStereo", ba.split_stereo);
   keys.number("baFunctionTolerance", ba.function_tolerance, "BundleAdjustmentOptions.function_tolerance", {0, 1});
   keys.number("baMaxSeconds", ba.max_seconds_per_pass, "BundleAdjustmentOptions.max_seconds_per_pass", {0, 60});
+  keys.number("bundleAdjustmentsPerSecond", options.bundle_adjustments_per_second,
+              "LocalMapperOptions.bundle_adjustments_per_second", {0, 1000});
   keys.flag("pauseAbortsBundleAdjustment", options.pause_aborts_bundle_adjustment);
   keys.flag("baKeepInterrupted", ba.keep_progress_on_abort);
   keys.integer("baIterationsBeforeInterrupt", options.iterations_before_interrupt,

@@ -14,7 +14,7 @@
 namespace stillslam {
 
 struct KeyFrameBudgetOptions {
-  double per_second = 5;  // 0: no budget; 5: bench/README.md, issue #21 session 10
+  double per_second = 6;  // 0: no budget; 6: bench/README.md, issue #21 session 15
   double burst = 2;       // keyframes that may come back to back
   int start_keyframes = 10;  // a map's first keyframes, outside the budget (bench/README.md, issue #21 session 11)
   double start_seconds = 0;  // ...and only within this many seconds of the map's first keyframe (0: no limit)
