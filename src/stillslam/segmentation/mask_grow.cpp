@@ -1,5 +1,7 @@
 #include "stillslam/segmentation/mask_grow.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cstring>
 #include <vector>
