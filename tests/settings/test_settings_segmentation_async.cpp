@@ -52,6 +52,18 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   const Settings k = load_settings(dir.write("k.yaml", kTum + "Segmentation.keyframeCheck: 1\n"));
   EXPECT_FALSE(k.segmentation.start_check);
   EXPECT_TRUE(k.segmentation.keyframe_check);
+  EXPECT_EQ(d.segmentation.near_person_px_per_frame, 0.0);
+  EXPECT_EQ(d.segmentation.near_person_max_px, 40);
+  EXPECT_EQ(d.segmentation.near_person_depth_band, 0.5);
+  const Settings n = load_settings(dir.write(
+      "n.yaml", kTum + "Segmentation.nearPersonPxPerFrame: 4.5
+Segmentation.nearPersonMaxPx: 25
+"
+                       "Segmentation.nearPersonDepthBand: 0.3
+"));
+  EXPECT_EQ(n.segmentation.near_person_px_per_frame, 4.5);
+  EXPECT_EQ(n.segmentation.near_person_max_px, 25);
+  EXPECT_EQ(n.segmentation.near_person_depth_band, 0.3);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -79,6 +91,15 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
        "cannot be combined with provisional_points"},
       {kTum + "Segmentation.maxMaskAge: 2\nSegmentation.modelledLatency: 3\n", "Segmentation.modelledLatency",
        "must be at most max_mask_age"},
+      {kTum + "Segmentation.nearPersonPxPerFrame: -1\n", "Segmentation.nearPersonPxPerFrame",
+       "is -1: must be in [0, 100]"},
+      {kTum + "Segmentation.nearPersonPxPerFrame: 101\n", "Segmentation.nearPersonPxPerFrame",
+       "is 101: must be in [0, 100]"},
+      {kTum + "Segmentation.nearPersonMaxPx: -1\n", "Segmentation.nearPersonMaxPx", "is -1: must be in [0, 1000]"},
+      {kTum + "Segmentation.nearPersonMaxPx: 1001\n", "Segmentation.nearPersonMaxPx", "is 1001: must be in [0, 1000]"},
+      {kTum + "Segmentation.nearPersonDepthBand: 0\n", "Segmentation.nearPersonDepthBand", "is 0: must be in (0, 100]"},
+      {kTum + "Segmentation.nearPersonDepthBand: 101\n", "Segmentation.nearPersonDepthBand",
+       "is 101: must be in (0, 100]"},
   };
   for (const Case& c : cases) {
     const std::string message = test::settings_error(dir, c.text);

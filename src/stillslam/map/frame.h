@@ -19,6 +19,14 @@ namespace stillslam {
 
 class KeyFrame;
 
+// A dynamic instance carried to a frame from an older segmentation (async
+// mode): its mask (image size, 255 inside, without margin) and its median
+// depth in this frame (metres; 0: unknown).
+struct CarriedInstance {
+  cv::Mat1b mask;
+  float depth = 0;
+};
+
 class Frame {
  public:
   Frame() = default;
@@ -58,6 +66,10 @@ class Frame {
   // one (0: this frame's own segmentation; -1: no segmentation).
   int mask_age() const { return mask_age_; }
   void set_mask_age(int age) { mask_age_ = age; }
+  // With a carried mask (age > 0, mask propagation): the instances it was made
+  // of; empty otherwise.
+  const std::vector<CarriedInstance>& carried_instances() const { return carried_instances_; }
+  void set_carried_instances(std::vector<CarriedInstance> instances) { carried_instances_ = std::move(instances); }
 
   // Matched map points and outlier flags.
   const MapPointPtr& map_point(std::size_t i) const { return map_points_[i]; }
@@ -94,6 +106,7 @@ class Frame {
   cv::Mat1b dynamic_mask_;
   float masked_fraction_ = 0;
   int mask_age_ = -1;
+  std::vector<CarriedInstance> carried_instances_;
 };
 
 }  // namespace stillslam

@@ -70,7 +70,8 @@ std::optional<Eigen::Isometry3d> AsyncMasks::predicted_pose(std::size_t frame_in
   return poses_[1].second * poses_[0].second.inverse() * poses_[1].second;
 }
 
-cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray, const cv::Mat1f& depth, int age) {
+cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray, const cv::Mat1f& depth, int age,
+                                 std::vector<PropagatedInstance>& instances) {
   if (reset_from_ != fresh_->frame_index) {
     const auto kept = submitted_.find(fresh_->frame_index);
     if (kept == submitted_.end()) return carried(*fresh_, age);
@@ -88,8 +89,9 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
     last_propagated_ = fresh_->frame_index;
   }
   if (age == 0) return fresh_->dynamic_mask;
-  const PropagatedMasks moved = propagator_->propagate(frame_index, gray, depth, predicted_pose(frame_index));
+  PropagatedMasks moved = propagator_->propagate(frame_index, gray, depth, predicted_pose(frame_index));
   last_propagated_ = frame_index;
+  instances = std::move(moved.instances);
   // A disc like the fresh masks' dilation, computed only around the mask
   // (grow_mask), not over the whole frame.
   return grow_mask(moved.union_mask, dilation_px_);
@@ -191,7 +193,7 @@ FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, cons
   out.input_age = static_cast<int>(frame_index - fresh_->frame_index);
   ThreadCpuStopwatch carrying;
   if (propagator_ && !gray.empty()) {
-    out.mask = propagated(frame_index, pending_gray_, pending_depth_, out.input_age);
+    out.mask = propagated(frame_index, pending_gray_, pending_depth_, out.input_age, out.instances);
     // What a later fresh result could start from is kept; older frames are not needed.
     submitted_.erase(submitted_.begin(), submitted_.lower_bound(fresh_->frame_index));
   } else {

@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "stillslam/segmentation/mask_propagation.h"
 #include "stillslam/segmentation/segmentation_options.h"
@@ -51,6 +52,9 @@ struct FrameMask {
   bool waited = false;   // this frame waited for a fresh mask
   double wait_ms = 0;
   double propagation_cpu_ms = 0;  // this thread's CPU time carrying the mask (propagator or growing)
+  // Age > 0 with the propagator: each carried instance, undilated, with its
+  // median depth in this frame. Empty otherwise.
+  std::vector<PropagatedInstance> instances;
 };
 
 class AsyncMasks {
@@ -103,7 +107,8 @@ class AsyncMasks {
   // Waits (threaded) or takes at once (deterministic) the result of `frame_index`.
   void wait_for(std::size_t frame_index);
   cv::Mat1b carried(const SegmentationResult& result, int age) const;
-  cv::Mat1b propagated(std::size_t frame_index, const cv::Mat1b& gray, const cv::Mat1f& depth, int age);
+  cv::Mat1b propagated(std::size_t frame_index, const cv::Mat1b& gray, const cv::Mat1f& depth, int age,
+                       std::vector<PropagatedInstance>& instances);
   std::optional<Eigen::Isometry3d> predicted_pose(std::size_t frame_index) const;
 
   SegmentationStage& stage_;

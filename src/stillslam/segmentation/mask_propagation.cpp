@@ -384,6 +384,7 @@ PropagatedMasks MaskPropagator::propagate(std::uint64_t frame_id, const cv::Mat1
     }
 
     inst.mask = t.mask;
+    inst.depth = t.median_depth;
     out.instances.push_back(std::move(inst));
   }
 

@@ -70,6 +70,7 @@ struct PropagatedInstance {
   cv::Mat1b mask;  // frame-size, undilated
   InstanceMotion motion = InstanceMotion::none;
   int tracked_points = 0;  // flow points that passed the checks (inliers of the motion model)
+  float depth = 0;  // the instance's median depth in this frame (metres; 0: unknown)
 };
 
 struct PropagatedMasks {

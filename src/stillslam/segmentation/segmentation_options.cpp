@@ -22,6 +22,9 @@ void SegmentationOptions::check() const {
   at_least("SegmentationOptions.urgent_inliers", urgent_inliers, 0);
   at_least("SegmentationOptions.max_grow_px", max_grow_px, 0);
   in_range("SegmentationOptions.thread_nice", thread_nice, 0, 19);
+  in_range("SegmentationOptions.near_person_px_per_frame", near_person_px_per_frame, 0, 100);
+  in_range("SegmentationOptions.near_person_max_px", near_person_max_px, 0, 1000);
+  in_half_open("SegmentationOptions.near_person_depth_band", near_person_depth_band, 0, 100);
   if (provisional_points && !keyframe_hold) {
     throw OptionError("SegmentationOptions.provisional_points", "1",
                       "needs keyframe_hold (Segmentation.keyframeHold: 1): it decides which keyframes wait "

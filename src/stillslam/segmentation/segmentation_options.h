@@ -88,6 +88,14 @@ struct SegmentationOptions {
   // arrives (it was built with a carried one), the map points that frame saw
   // on a person are culled (tracking/fresh_mask_check.h).
   bool fresh_mask_cull = false;
+  // Async: Segmentation.nearPersonPxPerFrame, a keyframe made under a carried
+  // mask makes no depth point from a keypoint within this many pixels per
+  // frame of mask age (near_person_max_px at most) of a carried instance whose
+  // median depth is within near_person_depth_band metres of the keypoint's
+  // (tracking/near_person.h). 0: off.
+  double near_person_px_per_frame = 0;
+  int near_person_max_px = 40;          // Segmentation.nearPersonMaxPx
+  double near_person_depth_band = 0.5;  // Segmentation.nearPersonDepthBand (metres)
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

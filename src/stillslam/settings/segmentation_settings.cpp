@@ -100,6 +100,11 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.flag("startCheck", options.start_check, "SegmentationOptions.start_check");
   keys.flag("keyframeCheck", options.keyframe_check, "SegmentationOptions.keyframe_check");
   keys.flag("checkNewPoints", options.check_new_points, "SegmentationOptions.check_new_points");
+  keys.number("nearPersonPxPerFrame", options.near_person_px_per_frame,
+              "SegmentationOptions.near_person_px_per_frame", {0, 100});
+  keys.integer("nearPersonMaxPx", options.near_person_max_px, "SegmentationOptions.near_person_max_px", {0, 1000});
+  keys.number("nearPersonDepthBand", options.near_person_depth_band, "SegmentationOptions.near_person_depth_band",
+              {0, 100, true});
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

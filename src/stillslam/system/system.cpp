@@ -216,6 +216,11 @@ void System::build_pipeline(const Settings& settings) {
     tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;
   }
   if (provisional_points_) tracking.provisional_mask_age = settings.segmentation.keyframe_mask_age;
+  if (async_masks_) {
+    tracking.near_person.px_per_frame = settings.segmentation.near_person_px_per_frame;
+    tracking.near_person.max_px = settings.segmentation.near_person_max_px;
+    tracking.near_person.depth_band_m = settings.segmentation.near_person_depth_band;
+  }
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }
 

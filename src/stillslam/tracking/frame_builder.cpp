@@ -71,6 +71,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     right_future = std::async(std::launch::async, [&] { return extractor_.extract(input.right, &right_pyramid); });
   }
   cv::Mat1b exclude;
+  std::vector<CarriedInstance> carried;
   if (segmentation_ != nullptr) {
     Stopwatch wait;
     SegmentationResult seg = mask_future.get();
@@ -101,6 +102,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     exclude = motion_ && m.age == 0 ? motion_->mask_for(m.source->detections, m.source->held_mask, color.size())
                                     : m.mask;
     if (dynamics) dynamics->detections = m.source->detections;
+    for (const PropagatedInstance& inst : m.instances) carried.push_back(CarriedInstance{inst.mask, inst.depth});
   }
   Stopwatch extraction;
   ThreadCpuStopwatch extraction_cpu;
@@ -155,6 +157,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
               std::move(left.descriptors), std::move(u_right), std::move(depth));
   frame.set_dynamic_mask(exclude);
   frame.set_mask_age(st.mask_age);
+  frame.set_carried_instances(std::move(carried));
   st.keypoints_with_depth = frame.num_with_depth();
   st.total_ms = total.elapsed_ms();
   return frame;

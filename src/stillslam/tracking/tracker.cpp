@@ -291,9 +291,14 @@ void Tracker::initialize(Frame& frame, const Frame& tracked, const std::vector<b
   start_frames_rejected_ = 0;
   frame.set_pose(Eigen::Isometry3d::Identity());
   KeyFramePtr kf = map_->create_keyframe(frame);
+  const std::vector<char> near_person = near_carried_person(frame, options_.near_person);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const auto p = kf->unproject(i);
     if (!p || (!keep.empty() && !keep[i])) continue;
+    if (near_person[i]) {
+      ++near_person_skipped_;
+      continue;
+    }
     MapPointPtr mp = map_->create_map_point(*p, kf.get());
     mp->add_observation(kf.get(), i);
     kf->set_map_point(i, mp);
@@ -573,8 +578,14 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
                      ((options_.new_point_check.enabled && last_frame_.id() + 1 == frame.id()) || start_window);
   // Under a carried mask too old, the new points wait for the frame's own mask.
   const bool provisional = makes_provisional_points(frame);
+  // Under a carried mask, keypoints near a carried person at its depth are likely on it.
+  const std::vector<char> near_person = near_carried_person(frame, options_.near_person);
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i) && !failed_match[i]) {
+      if (near_person[i]) {
+        ++near_person_skipped_;
+        continue;
+      }
       const Eigen::Vector3d p = *kf->unproject(i);
       if (check && !seen_where_predicted(last_frame_, p, frame.descriptor(i), options_.new_point_check)) continue;
       MapPointPtr mp = map_->create_map_point(p, kf.get());

@@ -82,6 +82,9 @@ class Tracker {
     return start_candidate_ ? std::optional<std::uint64_t>(start_candidate_->id()) : std::nullopt;
   }
   const KeyFramePtr& last_keyframe() const { return last_keyframe_; }
+  // Keypoints that made no depth point in a keyframe because they lay near a
+  // carried person at its depth (TrackerOptions::near_person), in all.
+  std::size_t near_person_skipped() const { return near_person_skipped_; }
 
  private:
   enum class Start { Waiting, FromThisFrame, FromAnEarlierFrame };
@@ -131,6 +134,7 @@ class Tracker {
   std::uint64_t last_lost_frame_id_ = 0;
   bool was_lost_ = false;
   std::uint64_t temporary_point_id_ = 0;
+  std::size_t near_person_skipped_ = 0;
   // The first keyframe awaiting confirmation by the next frames, with the
   // keypoints that may become map points.
   std::optional<Frame> start_candidate_;

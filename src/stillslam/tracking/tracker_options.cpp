@@ -35,6 +35,7 @@ void TrackerOptions::check() const {
   at_least("TrackerOptions.close_points_untracked_min", close_points_untracked_min, 0);
   at_least("TrackerOptions.new_keyframe_points", new_keyframe_points, 0);
   new_point_check.check();
+  near_person.check();
   at_least("TrackerOptions.outlier_streak_cull", outlier_streak_cull, 0);
   pose.check();
   static_evidence.check();

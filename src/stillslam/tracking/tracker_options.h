@@ -4,6 +4,7 @@
 #include "stillslam/tracking/initial_view_check.h"
 #include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/motion_prior.h"
+#include "stillslam/tracking/near_person.h"
 #include "stillslam/tracking/sparse_view.h"
 #include "stillslam/tracking/static_evidence.h"
 #include "stillslam/tracking/tracking_probe.h"
@@ -93,6 +94,10 @@ struct TrackerOptions {
   // tracking/provisional_points.h confirms or culls them when the frame's own
   // mask comes. -1: never.
   int provisional_mask_age = -1;
+  // A keyframe made under a carried mask makes no depth point from a keypoint
+  // near a carried instance at that instance's depth (tracking/near_person.h;
+  // set by System from Segmentation.nearPerson* in async mode). Off: px_per_frame 0.
+  NearPersonOptions near_person;
   // The crowd fallback when masks hide most of the view (tracking/sparse_view.h,
   // Motion.sparseView*).
   SparseViewOptions sparse_view;
