@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "map/synthetic_scene.h"
+#include "stillslam/core/option_check.h"
 #include "stillslam/tracking/near_person.h"
 #include "stillslam/tracking/tracker.h"
 
