@@ -56,11 +56,8 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(d.segmentation.near_person_max_px, 40);
   EXPECT_EQ(d.segmentation.near_person_depth_band, 0.5);
   const Settings n = load_settings(dir.write(
-      "n.yaml", kTum + "Segmentation.nearPersonPxPerFrame: 4.5
-Segmentation.nearPersonMaxPx: 25
-"
-                       "Segmentation.nearPersonDepthBand: 0.3
-"));
+      "n.yaml", kTum + "Segmentation.nearPersonPxPerFrame: 4.5\nSegmentation.nearPersonMaxPx: 25\n"
+                       "Segmentation.nearPersonDepthBand: 0.3\n"));
   EXPECT_EQ(n.segmentation.near_person_px_per_frame, 4.5);
   EXPECT_EQ(n.segmentation.near_person_max_px, 25);
   EXPECT_EQ(n.segmentation.near_person_depth_band, 0.3);
