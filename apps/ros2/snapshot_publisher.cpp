@@ -50,6 +50,14 @@ void SnapshotPublisher::loop() {
 void SnapshotPublisher::send(const FrameSnapshot& frame) {
   const std::int64_t stamp = stamps_.stamp_ns(frame.index, frame.timestamp);
   std_msgs_msg_dds__String_ state{const_cast<char*>(frame.state.c_str())};
+  // The frames the map's start waited on join the path (their pose and tf went out without a pose).
+  for (const FrameSnapshot::EarlierPose& p : frame.start_frames_posed) {
+    if (frame.map_id != path_map_id_) {
+      path_message_.clear();
+      path_map_id_ = frame.map_id;
+    }
+    path_message_.add(p.T_world_cam, stamps_.stamp_ns(p.index, p.timestamp));
+  }
   if (frame.has_pose) {
     pose_.write(pose_stamped(frame.T_world_cam, stamp, map_frame_));
     const TfMessage tf(frame.T_world_cam, stamp, map_frame_, camera_frame_);
