@@ -298,7 +298,7 @@ std::string Tracker::drop_start_candidate() {
               (start_confirming_.size() > 1 ? "s" : "") + " that confirmed it (to frame " +
               std::to_string(start_confirming_.back().frame.id()) + ")";
     }
-    note += " get no pose";
+    note += start_confirming_.empty() ? " gets no pose" : " get no pose";
   }
   start_candidate_.reset();
   start_confirming_.clear();
