@@ -142,6 +142,7 @@ void run(const RunArgs& args) {
   std::vector<std::size_t> features_removed;  // per processed frame, from its snapshot
   const std::size_t total = options.max_frames ? std::min(*options.max_frames, dataset->size()) : dataset->size();
   options.on_frame = [&](const FrameStats& f, const System& system) {
+    for (const FrameStats::EarlierPose& p : f.start_frames_posed) live.write({p.timestamp, p.T_world_cam});
     if (f.has_pose) live.write({f.timestamp, *system.last_T_world_cam()});
     std::shared_ptr<const FrameSnapshot> snapshot = system.publisher().frame().value;
     features_removed.push_back(snapshot ? snapshot->removed_keypoints.size() : 0);

@@ -105,7 +105,9 @@ Outcome run(const Args& a, const Settings& settings, const Dataset& dataset, boo
       if (!f.right.empty()) f.right.setTo(0);
     }
     out.source_index.push_back(i);
-    out.frames.push_back(system.process(f));
+    FrameStats stats = system.process(f);
+    mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on
+    out.frames.push_back(std::move(stats));
   }
   system.shutdown();
   out.seconds = wall.elapsed_ms() / 1000.0;
@@ -141,7 +143,10 @@ void report(const char* title, const Outcome& o, const Trajectory& gt) {
     if (f.state != TrackingState::Lost) first_lost.reset();
     if (f.reason == "relocalized") std::printf("  frame %zu: relocalized in map %llu\n", i, (unsigned long long)f.map_id);
     if (f.new_map) std::printf("  frame %zu: new map starts with the next frame with depth\n", i);
-    if (f.reason == "initialized") std::printf("  frame %zu: map %llu initialized\n", i, (unsigned long long)f.map_id);
+    if (f.reason == "initialized" || f.reason.starts_with("map started")) {
+      std::printf("  frame %zu: map %llu initialized (%zu earlier frames posed)\n", i, (unsigned long long)f.map_id,
+                  f.start_frames_posed.size());
+    }
     if (f.merged) std::printf("  frame %zu: active map merged into an older map\n", i);
   }
   for (const MapMergeStats& m : o.merges) {

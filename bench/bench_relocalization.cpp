@@ -247,7 +247,10 @@ Outcome run(const Sequence& seq, const Variant& v, std::size_t gap_begin, const 
   for (std::size_t i = 0; i < v.frames.size(); ++i) {
     SensorFrame input = v.blank[i] ? black_copy(*v.frames[i]) : *v.frames[i];
     input.index = i;
-    stats.push_back(system.process(input));
+    FrameStats latest = system.process(input);
+    mark_start_frames_posed(stats, latest);  // the frames the map's start waited on
+    for (const FrameStats::EarlierPose& p : latest.start_frames_posed) poses[p.index] = p.T_world_cam;
+    stats.push_back(std::move(latest));
     const FrameStats& s = stats.back();
     if (s.has_pose) poses[i] = *system.last_T_world_cam();
     out.new_maps += s.new_map ? 1 : 0;

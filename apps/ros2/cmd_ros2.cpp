@@ -122,6 +122,7 @@ void run_node(const Ros2Args& args) {
   TrajectoryWriter live(out_dir / "trajectory_live.txt");
   const ros2::LiveNodeResult result = ros2::run_live_node(
       participant, settings, options, system, signals.stop(), [&](const FrameStats& f, const System& s) {
+        for (const FrameStats::EarlierPose& p : f.start_frames_posed) live.write({p.timestamp, p.T_world_cam});
         if (f.has_pose) live.write({f.timestamp, *s.last_T_world_cam()});
       });
 

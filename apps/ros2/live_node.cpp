@@ -52,6 +52,7 @@ LiveNodeResult run_live_node(const DdsParticipant& participant, const Settings& 
         std::optional<SensorFrame> frame = mailbox.take();
         if (!frame) break;
         FrameStats stats = system.process(*frame);
+        mark_start_frames_posed(out.run.frames, stats);
         if (on_frame) on_frame(stats, system);
         out.run.frames.push_back(std::move(stats));
       }

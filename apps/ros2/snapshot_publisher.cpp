@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <utility>
+#include <vector>
+
 #include "image_message.h"
 #include "live_node.h"
 #include "ros_time.h"
@@ -50,18 +53,25 @@ void SnapshotPublisher::loop() {
 void SnapshotPublisher::send(const FrameSnapshot& frame) {
   const std::int64_t stamp = stamps_.stamp_ns(frame.index, frame.timestamp);
   std_msgs_msg_dds__String_ state{const_cast<char*>(frame.state.c_str())};
-  if (frame.has_pose) {
-    pose_.write(pose_stamped(frame.T_world_cam, stamp, map_frame_));
-    const TfMessage tf(frame.T_world_cam, stamp, map_frame_, camera_frame_);
+  // The frames the map's start waited on (sent without a pose) get theirs
+  // first, each with its own stamp, then this frame.
+  std::vector<std::pair<Eigen::Isometry3d, std::int64_t>> posed;
+  for (const FrameSnapshot::EarlierPose& p : frame.start_frames_posed) {
+    posed.emplace_back(p.T_world_cam, stamps_.stamp_ns(p.index, p.timestamp));
+  }
+  if (frame.has_pose) posed.emplace_back(frame.T_world_cam, stamp);
+  for (const auto& [T_world_cam, pose_stamp] : posed) {
+    pose_.write(pose_stamped(T_world_cam, pose_stamp, map_frame_));
+    const TfMessage tf(T_world_cam, pose_stamp, map_frame_, camera_frame_);
     tf_.write(tf.message());
     if (frame.map_id != path_map_id_) {
       path_message_.clear();
       path_map_id_ = frame.map_id;
     }
-    path_message_.add(frame.T_world_cam, stamp);
-    path_.write(path_message_.message(stamp));
+    path_message_.add(T_world_cam, pose_stamp);
     ++published_poses_;
   }
+  if (!posed.empty()) path_.write(path_message_.message(stamp));
   if (!frame.dynamic_mask.empty()) {
     const OutgoingImage mask(mask_image(frame.dynamic_mask), stamp, camera_frame_);
     mask_.write(mask.message());

@@ -123,7 +123,9 @@ inline LoopRun run_loop(const Settings& settings, const std::vector<SensorFrame>
   System system(tuned, SensorType::Rgbd, std::nullopt, options);
   int closed = 0;
   for (const SensorFrame& f : frames) {
-    out.frames.push_back(system.process(f));
+    FrameStats stats = system.process(f);
+    mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on
+    out.frames.push_back(std::move(stats));
     const int now = system.loop_closer_stats().loops_closed;
     for (; closed < now; ++closed) out.closed_at.push_back(out.frames.size() - 1);
   }

@@ -65,7 +65,11 @@ Outcome run(const test::SimSequence& seq, bool merging, int new_map_after = kLos
   settings.map_merging = merging;
   System system(settings, SensorType::Rgbd, seq.stereo, options);
   Outcome out;
-  for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
+  for (const SensorFrame& f : seq.frames) {
+    FrameStats stats = system.process(f);
+    mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on
+    out.frames.push_back(std::move(stats));
+  }
   system.shutdown();
   out.trajectory = system.trajectory_with_maps();
   out.maps = system.num_maps();
@@ -99,7 +103,17 @@ TEST(AtlasEndToEnd, NewMapAfterRepeatedRelocalizationFailure) {
   for (std::size_t i = switch_frame + 1; i < kBlankEnd; ++i) {
     EXPECT_EQ(out.frames[i].state, TrackingState::NotInitialized) << i;  // no depth: no map to start
   }
-  EXPECT_EQ(out.frames[kBlankEnd].reason, "initialized");
+  // The new map starts from the first frame with an image, confirmed by the 3
+  // next (Tracking.initUnmaskedConfirmFrames), which poses the 3 it waited on.
+  for (std::size_t i = kBlankEnd; i < kBlankEnd + 3; ++i) {
+    EXPECT_EQ(out.frames[i].state, TrackingState::NotInitialized) << i;
+    EXPECT_TRUE(out.frames[i].posed_at_start) << i;
+  }
+  EXPECT_NE(out.frames[kBlankEnd + 3].reason.find("map started at frame " + std::to_string(kBlankEnd)),
+            std::string::npos)
+      << out.frames[kBlankEnd + 3].reason;
+  ASSERT_EQ(out.frames[kBlankEnd + 3].start_frames_posed.size(), 3u);
+  EXPECT_EQ(out.frames[kBlankEnd + 3].start_frames_posed.front().index, kBlankEnd);
   for (std::size_t i = kBlankEnd; i < out.frames.size(); ++i) {
     EXPECT_TRUE(out.frames[i].has_pose) << i;
     EXPECT_EQ(out.frames[i].map_id, 1u) << i;

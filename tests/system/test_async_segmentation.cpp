@@ -74,7 +74,11 @@ RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false, bo
   };
   System system(settings, SensorType::Rgbd, seq.stereo, options);
   RunResult out;
-  for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
+  for (const SensorFrame& f : seq.frames) {
+    FrameStats stats = system.process(f);
+    mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on
+    out.frames.push_back(std::move(stats));
+  }
   system.shutdown();
   collect_system_results(system, out);
   return out;

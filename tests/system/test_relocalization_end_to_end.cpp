@@ -54,7 +54,11 @@ Outcome run(const test::SimSequence& seq, const std::filesystem::path& vocabular
   settings.tracking.init_min_keypoints = 300;
   System system(settings, SensorType::Rgbd, seq.stereo, options);
   Outcome out;
-  for (const SensorFrame& f : seq.frames) out.frames.push_back(system.process(f));
+  for (const SensorFrame& f : seq.frames) {
+    FrameStats stats = system.process(f);
+    mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on
+    out.frames.push_back(std::move(stats));
+  }
   system.shutdown();
   out.trajectory = system.trajectory();
   out.loop_closer = system.loop_closer_stats();

@@ -57,6 +57,16 @@ TEST(RunCommand, WritesTrajectoriesAndStats) {
   EXPECT_EQ(tracked, 30u);
   EXPECT_EQ(count_lines(out / "trajectory.txt"), tracked);
   EXPECT_EQ(count_lines(out / "trajectory_live.txt"), tracked);
+  // The map starts at frame 3 from frame 0 (the unmasked start check); frames 0-2 are posed then.
+  for (std::size_t i = 0; i < 30; ++i) {
+    EXPECT_TRUE(stats["frames"][i]["has_pose"].get<bool>()) << i;
+    EXPECT_EQ(stats["frames"][i]["posed_at_start"].get<bool>(), i < 3) << i;
+    EXPECT_EQ(stats["frames"][i]["state"].get<std::string>(), i < 3 ? "not_initialized" : "ok") << i;
+  }
+  EXPECT_EQ(stats["frames"][3]["reason"].get<std::string>().rfind("map started at frame 0", 0), 0u)
+      << stats["frames"][3]["reason"];
+  const Trajectory live = read_trajectory(out / "trajectory_live.txt");
+  for (std::size_t i = 1; i < live.size(); ++i) EXPECT_GT(live[i].timestamp, live[i - 1].timestamp);
   EXPECT_GE(count_lines(out / "keyframes.txt"), 1u);
   EXPECT_LT(stats["summary"]["ate_rmse"].get<double>(), 0.01);
   for (const char* key : {"features_before_filter", "features_after_filter", "matches", "inliers", "detections",

@@ -24,6 +24,15 @@ struct FrameSnapshot {
   bool has_pose = false;
   Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
   std::uint64_t map_id = 0;     // the active map after this frame
+  // This frame started the map from an earlier one: the frames the start
+  // waited on (published without a pose), posed now, oldest first (the ROS 2
+  // node sends their pose, tf and path before this frame's).
+  struct EarlierPose {
+    std::size_t index = 0;
+    double timestamp = 0;
+    Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+  };
+  std::vector<EarlierPose> start_frames_posed;
   bool keyframe = false;        // the frame became a keyframe
   cv::Mat image;                // the colour (or gray) input image, shared
   cv::Mat1b dynamic_mask;       // the mask its features were kept out of (empty without segmentation)

@@ -116,6 +116,7 @@ RunResult run_dataset(const Settings& settings, const Dataset& source, const Run
       FrameStats stats = system.process(frame);
       loop_end = wall.elapsed_ms() / 1000.0 - paused_seconds;
       stats.latency_ms = 1000.0 * (loop_end - arrival);
+      mark_start_frames_posed(out.frames, stats);  // the frames the map's start waited on have poses now
       if (options.on_frame) options.on_frame(stats, system);
       out.frames.push_back(std::move(stats));
     }

@@ -3,6 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/motion_prior.h"
@@ -44,11 +47,38 @@ struct FrameStats {
   // process().
   double latency_ms = 0;
   bool has_pose = false;
+  // This frame started the map from an earlier frame (Tracking.initConfirmFrames,
+  // initUnmaskedConfirmFrames): the frames the start waited on, which had no pose
+  // when they were processed, posed now (the first keyframe's frame at the map's
+  // origin, each confirming frame at the start check's motion from it), oldest
+  // first. Their records are in the trajectory; DatasetRunner marks their stats.
+  struct EarlierPose {
+    std::size_t index = 0;  // the frame's input index (FrameStats::index)
+    double timestamp = 0;
+    Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+  };
+  std::vector<EarlierPose> start_frames_posed;
+  // Set on a frame the start waited on once the map started (DatasetRunner):
+  // has_pose is then true while state and reason stay as they were when it was processed.
+  bool posed_at_start = false;
   std::uint64_t map_id = 0;  // the active map after tracking (atlas)
   bool new_map = false;      // a new map starts with the next frame
   bool merged = false;       // the active map was merged into an older one
   int loops_closed = 0;      // by loop closing so far (all maps)
   bool global_bundle_adjustment_running = false;  // after this frame
 };
+
+// Marks the frames `latest` posed at the map's start among `frames` (the
+// stats of the frames processed before it): has_pose and posed_at_start.
+inline void mark_start_frames_posed(std::vector<FrameStats>& frames, const FrameStats& latest) {
+  for (const FrameStats::EarlierPose& p : latest.start_frames_posed) {
+    for (auto f = frames.rbegin(); f != frames.rend(); ++f) {
+      if (f->index != p.index) continue;
+      f->has_pose = true;
+      f->posed_at_start = true;
+      break;
+    }
+  }
+}
 
 }  // namespace stillslam

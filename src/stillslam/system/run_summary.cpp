@@ -124,6 +124,7 @@ nlohmann::json to_json(const FrameStats& f) {
           {"state", to_string(f.state)},
           {"reason", f.reason},
           {"has_pose", f.has_pose},
+          {"posed_at_start", f.posed_at_start},
           {"map_id", f.map_id},
           {"keyframe", f.keyframe},
           {"keyframe_deferred", f.keyframe_deferred},

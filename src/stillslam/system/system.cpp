@@ -536,6 +536,28 @@ FrameStats System::process(const SensorFrame& input) {
     }
   }
   stats.map_id = atlas_->active_map_id();
+  // The map started from an earlier frame: the frames its start waited on get
+  // their records (and poses) now, before this frame's.
+  for (const StartFramePose& s : result.start_frames) {
+    const auto input = std::find_if(start_inputs_.begin(), start_inputs_.end(),
+                                    [&s](const auto& p) { return p.first == s.frame.id(); });
+    records_.push_back({s.frame.timestamp(), s.reference, s.T_cam_reference, s.keyframe, {}});
+    if (options_.trajectory_refinement.enabled) {
+      std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
+      records_.back().observations = collect_frame_observations(s.frame);
+    }
+    if (input != start_inputs_.end()) {
+      stats.start_frames_posed.push_back({input->second, s.frame.timestamp(), s.frame.T_cam_world().inverse()});
+    }
+  }
+  if (result.state == TrackingState::NotInitialized) {
+    // Only the frames from the start candidate on can be posed by a start.
+    start_inputs_.emplace_back(frame.id(), input.index);
+    const std::optional<std::uint64_t> candidate = tracker_->start_candidate_id();
+    std::erase_if(start_inputs_, [&candidate](const auto& p) { return !candidate || p.first < *candidate; });
+  } else {
+    start_inputs_.clear();
+  }
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
     records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference, result.new_keyframe, {}});
@@ -593,6 +615,9 @@ void System::publish(const SensorFrame& input, const Frame& frame, const FrameSt
   f->has_pose = stats.has_pose;
   if (last_T_world_cam_) f->T_world_cam = *last_T_world_cam_;
   f->map_id = atlas_->active_map_id();
+  for (const FrameStats::EarlierPose& p : stats.start_frames_posed) {
+    f->start_frames_posed.push_back({p.index, p.timestamp, p.T_world_cam});
+  }
   f->keyframe = stats.keyframe;
   f->image = input.color.empty() ? input.gray : input.color;
   f->dynamic_mask = frame.dynamic_mask();

@@ -257,6 +257,9 @@ class System {
   Publisher publisher_;
   int frames_since_map_snapshot_ = 0;
   std::vector<FrameRecord> records_;
+  // The frames processed since the tracker's start candidate (frame id, input
+  // index): those a start from an earlier frame poses.
+  std::vector<std::pair<std::uint64_t, std::size_t>> start_inputs_;
   std::uint64_t next_frame_id_ = 0;
   std::optional<Eigen::Isometry3d> last_T_world_cam_;
   int new_map_after_lost_frames_ = 0;  // 0: never

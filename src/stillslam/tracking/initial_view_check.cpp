@@ -94,11 +94,13 @@ InitialViewCheck check_initial_view(const Frame& first, const Frame& next, const
   }
   out.confirmed.assign(first.size(), false);
   out.matched.assign(first.size(), false);
+  out.next_keypoint.assign(first.size(), -1);
   for (std::size_t k = 0; k < matches.size(); ++k) {
     const std::size_t i = with_depth[static_cast<std::size_t>(matches[k].queryIdx)];
     out.matched[i] = true;
     out.keep[i] = agrees[k];
     out.confirmed[i] = motion.inlier[k];
+    if (motion.inlier[k]) out.next_keypoint[i] = matches[k].trainIdx;
   }
   for (const std::size_t i : with_depth) {
     const cv::Point2f& p = first.keypoint(i).pt;

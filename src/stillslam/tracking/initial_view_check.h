@@ -59,6 +59,9 @@ struct InitialViewCheck {
   std::vector<bool> keep;  // per first-frame keypoint: may become a map point
   std::vector<bool> confirmed;  // per first-frame keypoint: matched in the next frame, agreeing with the motion
   std::vector<bool> matched;    // per first-frame keypoint: matched in the next frame (with depth)
+  // Per first-frame keypoint: the next frame's keypoint of its match when
+  // that match is an inlier of the PnP motion (confirmed), else -1.
+  std::vector<int> next_keypoint;
   // When accepted: the next frame's pose relative to the first (PnP RANSAC).
   Eigen::Isometry3d T_next_first = Eigen::Isometry3d::Identity();
 };

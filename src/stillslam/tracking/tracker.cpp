@@ -52,6 +52,7 @@ void Tracker::start_new_map(Map& map) {
   last_lost_frame_id_ = 0;
   was_lost_ = false;
   start_candidate_.reset();
+  start_confirming_.clear();
   start_keep_.clear();
   start_confirmed_.clear();
   start_matched_.clear();
@@ -168,11 +169,11 @@ TrackingResult Tracker::track(Frame& frame) {
 
 bool Tracker::refuse_sparse_start(const Frame& frame, TrackingResult& result) {
   if (!is_sparse_view(frame, options_.sparse_view)) return false;
-  start_candidate_.reset();
+  const std::string dropped = drop_start_candidate();
   result.state = state_;
   result.sparse_view = SparseView::NoStart;
   result.reason = "the masks hide " + std::to_string(static_cast<int>(100 * masked_share(frame))) +
-                  " % of the view: no map starts from it";
+                  " % of the view: no map starts from it" + dropped;
   return true;
 }
 
@@ -200,9 +201,9 @@ bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok
 
 Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   if (frame.num_with_depth() < options_.init_min_keypoints) {
-    start_candidate_.reset();
+    const std::string dropped = drop_start_candidate();
     result.reason = "waiting for a frame with " + std::to_string(options_.init_min_keypoints) +
-                    " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")";
+                    " keypoints with depth (has " + std::to_string(frame.num_with_depth()) + ")" + dropped;
     return Start::Waiting;
   }
   // The first keyframe's points enter the map like any keyframe's: not from a stale mask.
@@ -212,6 +213,7 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   const bool unmasked = frame.dynamic_mask().empty();
   const int confirm_frames = unmasked ? options_.init_unmasked_confirm_frames : options_.init_confirm_frames;
   if (!stale_mask && ((unmasked && confirm_frames == 0) || start_frames_rejected_ >= options_.init_wait_frames)) {
+    start_confirming_.clear();  // a candidate left after the last rejection gets no pose
     initialize(frame, frame);
     return Start::FromThisFrame;
   }
@@ -243,6 +245,9 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         if (unmasked) {
           result.reason = "map started at frame " + std::to_string(first_id) + ", " + tally +
                           (filter ? ": left out of the first keyframe" : ": first keyframe kept whole");
+        } else {
+          result.reason = "map started at frame " + std::to_string(first_id) + ", confirmed by " +
+                          std::to_string(start_confirmations_) + " frames";
         }
         if (unmasked && filter && options_.init_unmasked_trust_frames > 0) {
           start_evidence_.begin(reference_keyframe_->map_points(),
@@ -251,30 +256,80 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         // The first frame is at identity: the motion model starts this frame
         // at the check's PnP motion, however many frames were dropped between.
         velocity_ = check.T_next_first;
-        start_gap_frames_ = static_cast<int>(std::max<std::uint64_t>(frame.id() - first.id(), 1));
+        start_gap_frames_ = static_cast<int>(std::max<std::uint64_t>(frame.id() - first_id, 1));
+        result.start_frames = pose_start_frames(std::move(first));
         return Start::FromAnEarlierFrame;
       }
+      // Posed once the map starts from the candidate: the check's motion from it.
+      ConfirmingFrame waited{frame, check.next_keypoint};
+      waited.frame.set_pose(check.T_next_first);
+      start_confirming_.push_back(std::move(waited));
       result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
                       std::to_string(confirm_frames) + " frames" + (unmasked ? ", " + tally : "");
       return Start::Waiting;
     }
     ++start_frames_rejected_;
-    result.reason = check.reason;
+    result.reason = check.reason + drop_start_candidate();
   } else {
     result.reason = "checking the first keyframe against the next frames";
   }
   if (stale_mask) {
-    start_candidate_.reset();
+    const std::string dropped = drop_start_candidate();
     result.keyframe_deferred = true;  // asks for the next segmentation slot
-    result.reason = "waiting for a fresher mask to start the map (mask age " + std::to_string(frame.mask_age()) + ")";
+    result.reason =
+        "waiting for a fresher mask to start the map (mask age " + std::to_string(frame.mask_age()) + ")" + dropped;
     return Start::Waiting;
   }
   start_candidate_ = frame;
+  start_confirming_.clear();
   start_keep_.assign(frame.size(), true);
   start_confirmed_.assign(frame.size(), false);
   start_matched_.assign(frame.size(), false);
   start_confirmations_ = 0;
   return Start::Waiting;
+}
+
+std::string Tracker::drop_start_candidate() {
+  std::string note;
+  if (start_candidate_) {
+    note = "; the start candidate (frame " + std::to_string(start_candidate_->id()) + ")";
+    if (!start_confirming_.empty()) {
+      note += " and the " + std::to_string(start_confirming_.size()) + " frame" +
+              (start_confirming_.size() > 1 ? "s" : "") + " that confirmed it (to frame " +
+              std::to_string(start_confirming_.back().frame.id()) + ")";
+    }
+    note += start_confirming_.empty() ? " gets no pose" : " get no pose";
+  }
+  start_candidate_.reset();
+  start_confirming_.clear();
+  return note;
+}
+
+std::vector<StartFramePose> Tracker::pose_start_frames(Frame first) {
+  const KeyFramePtr kf = reference_keyframe_;
+  std::vector<StartFramePose> out;
+  out.reserve(1 + start_confirming_.size());
+  const Eigen::Isometry3d T_first_ref = first.T_cam_world() * kf->T_world_cam();
+  out.push_back({std::move(first), kf, T_first_ref, true});
+  for (ConfirmingFrame& c : start_confirming_) {
+    Frame& f = c.frame;
+    // Its confirmed matches now see the first keyframe's points (those the start kept).
+    for (std::size_t i = 0; i < c.candidate_matches.size(); ++i) {
+      const int j = c.candidate_matches[i];
+      if (j < 0 || !kf->map_point(i)) continue;
+      f.set_map_point(static_cast<std::size_t>(j), kf->map_point(i));
+    }
+    // Motion-only BA from the PnP motion (with the depths the PnP left out);
+    // with too few inliers the PnP motion stays.
+    const Eigen::Isometry3d pnp = f.T_cam_world();
+    if (refine_pose(f, options_.pose) < kMinMotionInliers) f.set_pose(pnp);
+    discard_outliers(f);
+    f.set_reference_keyframe(kf);
+    const Eigen::Isometry3d T_cam_ref = f.T_cam_world() * kf->T_world_cam();
+    out.push_back({std::move(f), kf, T_cam_ref, false});
+  }
+  start_confirming_.clear();
+  return out;
 }
 
 std::pair<int, int> Tracker::start_tally() const {

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stillslam/map/frame.h"
 #include "stillslam/map/map.h"
@@ -35,6 +36,18 @@ struct LocalMappingLink {
   std::function<bool(Frame&)> relocalize;
 };
 
+// A frame the map's start waited on, posed when the map started from an
+// earlier frame: the first keyframe's own frame (at the map's origin) or a
+// frame that confirmed it (at the start check's PnP motion from it).
+struct StartFramePose {
+  // The frame with its pose and, as its map points, the first keyframe's
+  // points its confirmed matches saw (none for the first keyframe's frame).
+  Frame frame;
+  KeyFramePtr reference;  // the map's first keyframe
+  Eigen::Isometry3d T_cam_reference = Eigen::Isometry3d::Identity();
+  bool keyframe = false;  // the first keyframe was made from this frame
+};
+
 struct TrackingResult {
   TrackingState state = TrackingState::NotInitialized;
   std::string reason;  // why not Ok, or which method succeeded
@@ -50,6 +63,9 @@ struct TrackingResult {
   // under the map lock (local BA may move the keyframe right after).
   KeyFramePtr reference;
   Eigen::Isometry3d T_cam_reference = Eigen::Isometry3d::Identity();
+  // When this frame started the map from an earlier one: the frames the start
+  // waited on before this one, oldest first (they had no pose when tracked).
+  std::vector<StartFramePose> start_frames;
 };
 
 class Tracker {
@@ -104,6 +120,12 @@ class Tracker {
   bool refuse_sparse_start(const Frame& frame, TrackingResult& result);
   // Of the start candidate's points the confirming frames matched so far: how many, and how many some frame found moving.
   std::pair<int, int> start_tally() const;
+  // Forgets the start candidate and the frames that confirmed it; returns a
+  // note naming the frames that so get no pose (empty when there was none).
+  std::string drop_start_candidate();
+  // The start candidate's frame and the confirming frames before `frame`,
+  // posed in the map just started from the candidate (`first`, now its first keyframe).
+  std::vector<StartFramePose> pose_start_frames(Frame first);
   bool sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok);
   int search_points(Frame& frame, const std::vector<MapPointPtr>& points, float th);
   void update_last_frame();
@@ -144,6 +166,14 @@ class Tracker {
   // Keypoints of last_frame_ that give no visual-odometry point (the map's
   // first frame: those its start check left out).
   std::vector<bool> last_frame_left_out_;
+  // The frames that confirmed the start candidate so far (before the one
+  // that starts the map), each with its pose relative to the candidate (the
+  // check's PnP motion) and, per candidate keypoint, its confirmed match (-1: none).
+  struct ConfirmingFrame {
+    Frame frame;
+    std::vector<int> candidate_matches;
+  };
+  std::vector<ConfirmingFrame> start_confirming_;
   int start_confirmations_ = 0;
   int start_frames_rejected_ = 0;  // frames that had the depth but failed the check
   int start_gap_frames_ = 1;  // frames between the first keyframe and the frame that started the map

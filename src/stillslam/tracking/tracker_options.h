@@ -25,10 +25,11 @@ struct TrackerOptions {
   // the points that move (or that no frame confirms) out of the first
   // keyframe when it finds enough of them moving (init_unmasked_moving_share):
   // a view full of walking people would otherwise anchor the map on them.
-  // 0 (the default): the map starts from the first frame with depth. 3
-  // meets issue #20's bars (bench/README.md) but the frames it waits get no
-  // pose, which the end-to-end tests that expect a pose on every frame refuse.
-  int init_unmasked_confirm_frames = 0;
+  // The frames it waits on get their poses when the map starts (the first
+  // keyframe's frame at the origin, the others at the check's motion from it:
+  // TrackingResult::start_frames). 0: the map starts from the first frame with
+  // depth, unchecked. 3 meets issue #20's bars (bench/README.md).
+  int init_unmasked_confirm_frames = 3;
   // After such a start, for this many frames the first keyframe's points
   // count as static evidence, and no visual-odometry or keyframe depth point
   // is made where a match was rejected or that the previous frame did not
