@@ -143,3 +143,54 @@ TEST(TrackerStartUnmasked, TheGateKeepsTheFirstKeyFrameWholeWhereLittleMoves) {
 
 }  // namespace
 }  // namespace stillslam
+
+namespace stillslam {
+namespace {
+
+// Tracking.startFramePoses: the frames that waited for the start check get
+// their poses on the frame that starts the map (the first keyframe's frame at
+// identity, the confirming frames at the check's pose); without it, none.
+std::vector<TrackingResult::StartFrame> waited_poses(bool start_frame_poses, KeyFramePtr* keyframe = nullptr) {
+  test::SyntheticScene scene(2500);
+  Map map;
+  TrackerOptions options;
+  options.init_min_keypoints = 300;
+  options.init_unmasked_confirm_frames = 3;
+  options.init_unmasked_moving_share = 0;
+  options.start_frame_poses = start_frame_poses;
+  Tracker tracker(map, options, {});
+  std::vector<TrackingResult::StartFrame> out;
+  for (int k = 0; k < 6; ++k) {
+    Frame f = scene.make_frame(static_cast<std::uint64_t>(k), test::pose_at(0.02 * k, 0.004 * k, 0.5 * k));
+    TrackingResult r = tracker.track(f);
+    if (!r.start_frames.empty()) {
+      EXPECT_EQ(k, 3);  // the third confirming frame starts the map
+      out = r.start_frames;
+      if (keyframe) *keyframe = r.start_keyframe;
+    }
+    for (std::size_t i = 0; i < kMovers; ++i) scene.move_point(i, Eigen::Vector3d(0.05, 0, 0));
+  }
+  return out;
+}
+
+TEST(TrackerStartUnmasked, TheFramesThatWaitedGetTheirPosesWithStartFramePoses) {
+  KeyFramePtr first;
+  const std::vector<TrackingResult::StartFrame> poses = waited_poses(true, &first);
+  ASSERT_EQ(poses.size(), 3u);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->frame_id(), 0u);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    EXPECT_EQ(poses[k].frame_id, k);
+    // The true pose relative to frame 0 (the first keyframe, at identity).
+    const Eigen::Isometry3d truth = test::pose_at(0.02 * k, 0.004 * k, 0.5 * k) * test::pose_at(0).inverse();
+    EXPECT_LT((poses[k].T_cam_keyframe.translation() - truth.translation()).norm(), 0.002) << "frame " << k;
+    EXPECT_LT(Eigen::AngleAxisd(poses[k].T_cam_keyframe.linear() * truth.linear().transpose()).angle(), 0.002)
+        << "frame " << k;
+  }
+  EXPECT_TRUE(poses[0].T_cam_keyframe.isApprox(Eigen::Isometry3d::Identity()));
+  // Off (the default): the same start reports no waited frame.
+  EXPECT_TRUE(waited_poses(false).empty());
+}
+
+}  // namespace
+}  // namespace stillslam
