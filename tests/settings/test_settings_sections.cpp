@@ -170,14 +170,12 @@ TEST(SettingsSections, TrackingKeysAreRead) {
                            "Tracking.minLocalMapInliers: 25\nTracking.maxLocalKeyframes: 60\n"
                            "Tracking.poseRounds: 3\nTracking.poseIterations: 8\n"
                            "Tracking.relocMinBowMatches: 12\nTracking.relocMinRansacInliers: 8\n"
-                           "Tracking.relocMinInliers: 40\nTracking.startFramePoses: 1\n";
+                           "Tracking.relocMinInliers: 40\n";
   const Settings s = load_settings(dir.write("t.yaml", text));
   const TrackerOptions& t = s.tracking;
   EXPECT_EQ(t.init_min_keypoints, 400);
   EXPECT_EQ(t.init_confirm_frames, 3);
   EXPECT_EQ(t.init_wait_frames, 20);
-  EXPECT_TRUE(t.start_frame_poses);
-  EXPECT_FALSE(TrackerOptions{}.start_frame_poses);
   EXPECT_DOUBLE_EQ(t.initial_view.max_masked_fraction, 0.4);
   EXPECT_DOUBLE_EQ(t.initial_view.max_moving_share, 0.1);
   EXPECT_EQ(t.initial_view.min_matches, 60);
@@ -338,7 +336,6 @@ TEST(SettingsSections, BadValuesNameFileKeyValueAndRange) {
       {base + "LocalMapping.keyframeRedundancy: 0\n", "LocalMapping.keyframeRedundancy", "is 0: must be in (0, 1]"},
       {base + "LocalMapping.bundleAdjustment: 2\n", "LocalMapping.bundleAdjustment", "must be 0 or 1"},
       {base + "Tracking.motionPriorRefit: 2\n", "Tracking.motionPriorRefit", "must be 0 or 1"},
-      {base + "Tracking.startFramePoses: 2\n", "Tracking.startFramePoses", "must be 0 or 1"},
       {base + "LoopClosing.baThreads: 0\n", "LoopClosing.baThreads", "is 0: must be in [1, "},
       {base + "LoopClosing.minInliers: 0\n", "LoopClosing.minInliers", "is 0: must be in [1, 50000]"},
       {base + "LoopClosing.mergeMinInliers: -1\n", "LoopClosing.mergeMinInliers", "is -1: must be in [1, 50000]"},

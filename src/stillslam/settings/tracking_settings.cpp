@@ -19,7 +19,6 @@ void bind_tracking(const YamlReader& yaml, double fps, TrackerOptions& tracker, 
   keys.integer("initUnmaskedMovingPoints", tracker.init_unmasked_moving_points,
                "TrackerOptions.init_unmasked_moving_points", {0, 100000});
   keys.integer("initWaitFrames", tracker.init_wait_frames, "TrackerOptions.init_wait_frames", {0, 100000});
-  keys.flag("startFramePoses", tracker.start_frame_poses, "TrackerOptions.start_frame_poses");
   InitialViewCheckOptions& view = tracker.initial_view;
   keys.number("initMaxMaskedFraction", view.max_masked_fraction, "InitialViewCheckOptions.max_masked_fraction", {0, 1});
   keys.number("initMaxMovingShare", view.max_moving_share, "InitialViewCheckOptions.max_moving_share", {0, 1});

@@ -535,11 +535,6 @@ FrameStats System::process(const SensorFrame& input) {
   stats.map_id = atlas_->active_map_id();
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
-    // A map started from an earlier frame: the frames that waited for it first (Tracking.startFramePoses).
-    for (const TrackingResult::StartFrame& s : result.start_frames) {
-      const bool first = s.frame_id == result.start_keyframe->frame_id();
-      records_.push_back({s.timestamp, result.start_keyframe, s.T_cam_keyframe, first, {}});
-    }
     records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference, result.new_keyframe, {}});
     records_.back().sparse_view = result.sparse_view == SparseView::Tracked ||
                                   result.sparse_view == SparseView::Blended ||

@@ -57,7 +57,6 @@ void Tracker::start_new_map(Map& map) {
   start_matched_.clear();
   last_frame_left_out_.clear();
   start_confirmations_ = 0;
-  start_confirming_.clear();
   start_frames_rejected_ = 0;
   start_gap_frames_ = 1;
   start_evidence_.reset();
@@ -230,12 +229,6 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
       const std::string tally = std::to_string(moving) + " of " + std::to_string(matched) +
                                 " matched first-frame points found moving";
       if (++start_confirmations_ >= confirm_frames) {
-        if (options_.start_frame_poses) {
-          result.start_frames.push_back({start_candidate_->timestamp(), start_candidate_->id(),
-                                         Eigen::Isometry3d::Identity()});
-          result.start_frames.insert(result.start_frames.end(), start_confirming_.begin(), start_confirming_.end());
-        }
-        start_confirming_.clear();
         Frame first = std::move(*start_candidate_);
         // Without masks the check filters only when it found something moving.
         const bool filter = !unmasked || (moving >= options_.init_unmasked_moving_points &&
@@ -249,7 +242,6 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         const std::uint64_t first_id = first.id();
         start_candidate_.reset();
         initialize(first, frame, keep);
-        if (!result.start_frames.empty()) result.start_keyframe = reference_keyframe_;
         if (unmasked) {
           result.reason = "map started at frame " + std::to_string(first_id) + ", " + tally +
                           (filter ? ": left out of the first keyframe" : ": first keyframe kept whole");
@@ -264,7 +256,6 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
         start_gap_frames_ = static_cast<int>(std::max<std::uint64_t>(frame.id() - first.id(), 1));
         return Start::FromAnEarlierFrame;
       }
-      start_confirming_.push_back({frame.timestamp(), frame.id(), check.T_next_first});
       result.reason = "first keyframe confirmed by " + std::to_string(start_confirmations_) + " of " +
                       std::to_string(confirm_frames) + " frames" + (unmasked ? ", " + tally : "");
       return Start::Waiting;
@@ -285,7 +276,6 @@ Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {
   start_confirmed_.assign(frame.size(), false);
   start_matched_.assign(frame.size(), false);
   start_confirmations_ = 0;
-  start_confirming_.clear();
   return Start::Waiting;
 }
 

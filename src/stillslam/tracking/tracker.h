@@ -50,17 +50,6 @@ struct TrackingResult {
   // under the map lock (local BA may move the keyframe right after).
   KeyFramePtr reference;
   Eigen::Isometry3d T_cam_reference = Eigen::Isometry3d::Identity();
-  // With TrackerOptions::start_frame_poses, on the frame that started the map
-  // from an earlier one: the frames that waited, oldest first, each with its
-  // pose relative to `start_keyframe` (the first keyframe's frame: identity;
-  // a confirming frame: the start check's pose).
-  struct StartFrame {
-    double timestamp = 0;
-    std::uint64_t frame_id = 0;
-    Eigen::Isometry3d T_cam_keyframe = Eigen::Isometry3d::Identity();
-  };
-  std::vector<StartFrame> start_frames;
-  KeyFramePtr start_keyframe;
 };
 
 class Tracker {
@@ -152,8 +141,6 @@ class Tracker {
   // first frame: those its start check left out).
   std::vector<bool> last_frame_left_out_;
   int start_confirmations_ = 0;
-  // The confirming frames so far, with the check's pose (T_cam_first).
-  std::vector<TrackingResult::StartFrame> start_confirming_;
   int start_frames_rejected_ = 0;  // frames that had the depth but failed the check
   int start_gap_frames_ = 1;  // frames between the first keyframe and the frame that started the map
   // After a start checked without masks: its checked points as evidence (tracking/start_evidence.h).

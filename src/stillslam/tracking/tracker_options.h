@@ -43,11 +43,6 @@ struct TrackerOptions {
   double init_unmasked_moving_share = 0.1;
   int init_unmasked_moving_points = 0;
   int init_wait_frames = 30;
-  // A map started from an earlier frame (the start check above) also gives
-  // the frames that waited their poses: the first keyframe's frame its own,
-  // each confirming frame before the start its pose from the check
-  // (TrackingResult::start_frames). Off: those frames have no pose.
-  bool start_frame_poses = false;
   int max_frames_between_keyframes = 30;  // ORB-SLAM: fps
   int min_frames_between_keyframes = 0;
   KeyFrameBudgetOptions keyframe_budget;  // keyframes per second of input (tracking/keyframe_budget.h)
