@@ -118,15 +118,26 @@ TEST(MotionSettings, SparseViewKeysBind) {
   EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.masked_share, 0.5);
   EXPECT_EQ(defaults.motion.sparse_view.inliers, 100000);
   EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.tracked_weight, 0.2);
+  EXPECT_TRUE(defaults.motion.sparse_view.keyframes);
+  EXPECT_FALSE(defaults.motion.sparse_view.prior);
+  EXPECT_EQ(defaults.motion.sparse_view.smooth_frames, 0);
   const Settings s = load_settings(dir.write(
       "b.yaml", kBase + "Motion.sparseView: 1\nMotion.sparseViewMaskedShare: 0.6\nMotion.sparseViewInliers: 80\n"
-                        "Motion.sparseViewTrackedWeight: 0.3\n"));
+                        "Motion.sparseViewTrackedWeight: 0.3\nMotion.sparseViewKeyframes: 0\n"
+                        "Motion.sparseViewPrior: 1\nMotion.sparseViewSmoothFrames: 3\n"));
   EXPECT_TRUE(s.motion.sparse_view.enabled);
   EXPECT_DOUBLE_EQ(s.motion.sparse_view.masked_share, 0.6);
   EXPECT_EQ(s.motion.sparse_view.inliers, 80);
   EXPECT_DOUBLE_EQ(s.motion.sparse_view.tracked_weight, 0.3);
-  const std::string e = test::settings_error(dir, kBase + "Motion.sparseViewTrackedWeight: 2\n");
-  EXPECT_NE(e.find("Motion.sparseViewTrackedWeight"), std::string::npos) << e;
+  EXPECT_FALSE(s.motion.sparse_view.keyframes);
+  EXPECT_TRUE(s.motion.sparse_view.prior);
+  EXPECT_EQ(s.motion.sparse_view.smooth_frames, 3);
+  for (const std::string bad : {"Motion.sparseViewTrackedWeight: 2\n", "Motion.sparseViewKeyframes: 2\n",
+                                "Motion.sparseViewPrior: -1\n", "Motion.sparseViewSmoothFrames: -1\n",
+                                "Motion.sparseViewSmoothFrames: 101\n"}) {
+    const std::string e = test::settings_error(dir, kBase + bad);
+    EXPECT_NE(e.find(bad.substr(0, bad.find(':'))), std::string::npos) << bad << ": " << e;
+  }
 }
 
 TEST(MotionSettings, BadValuesNameTheKey) {

@@ -3,6 +3,8 @@
 // predicted pose when few inliers are left, and never starts a map.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "map/synthetic_scene.h"
 #include "stillslam/core/error.h"
 #include "stillslam/tracking/sparse_view.h"
@@ -67,6 +69,7 @@ struct SparseTracker {
   std::uint64_t id = 0;
   explicit SparseTracker(double tracked_weight, int inliers)
       : tracker(map, options(tracked_weight, inliers), {}) {}
+  explicit SparseTracker(const TrackerOptions& o) : tracker(map, o, {}) {}
   static TrackerOptions options(double tracked_weight, int inliers) {
     TrackerOptions o;
     o.init_min_keypoints = 300;
@@ -147,6 +150,101 @@ TEST(SparseView, NoMapStartsFromAHiddenView) {
     EXPECT_NE(r.reason.find("70 %"), std::string::npos) << r.reason;
   }
   EXPECT_EQ(t.map.num_keyframes(), 0u);
+}
+
+// SparseViewOptions::keyframes off: a sparse view makes no keyframe where one
+// is due; the next view that is not sparse makes it.
+TEST(SparseView, WithoutKeyframesASparseViewMakesNone) {
+  const auto run = [](bool keyframes) {
+    TrackerOptions o = SparseTracker::options(1.0, 0);
+    o.sparse_view.keyframes = keyframes;
+    o.close_points_tracked_min = 100000;  // any untracked close point asks for a keyframe, no budget
+    o.close_points_untracked_min = 0;
+    o.keyframe_budget.per_second = 0;
+    SparseTracker t(o);
+    t.start(4);
+    std::vector<bool> made;
+    for (double share : {0.6, 0.6, 0.6, 0.2, 0.2, 0.2}) {
+      Frame f = t.scene.make_frame(t.id, test::pose_at(0.01 * static_cast<double>(t.id)));
+      ++t.id;
+      f.set_dynamic_mask(mask_of_left_part(share));
+      const TrackingResult r = t.tracker.track(f);
+      EXPECT_EQ(r.state, TrackingState::Ok) << r.reason;
+      made.push_back(r.new_keyframe);
+    }
+    return made;
+  };
+  const auto count = [](const std::vector<bool>& made, std::size_t from, std::size_t to) {
+    return std::count(made.begin() + static_cast<std::ptrdiff_t>(from), made.begin() + static_cast<std::ptrdiff_t>(to), true);
+  };
+  // On (the default): the sparse views make the keyframes that are due.
+  const std::vector<bool> on = run(true);
+  EXPECT_GE(count(on, 0, 3), 2);
+  // Off: none in the three sparse views; the views after them make the one due.
+  const std::vector<bool> off = run(false);
+  EXPECT_EQ(count(off, 0, 3), 0);
+  EXPECT_GE(count(off, 3, 6), 1);
+}
+
+// SparseViewOptions::prior: a sparse view's camera jumps 30 mm beyond the
+// constant-velocity prediction (past the motion prior's 20 mm gate, so that
+// the gated prior is tried too, and rejected by its refit: the points agree).
+// With the fallback's prior the pose stays nearer the prediction.
+TEST(SparseView, WithThePriorASparseViewLeansOnThePrediction) {
+  const auto jump = [](bool prior) {
+    TrackerOptions o = SparseTracker::options(1.0, 0);  // no blend
+    o.sparse_view.prior = prior;
+    SparseTracker t(o);
+    t.start(8);
+    const double predicted = 0.01 * static_cast<double>(t.id);
+    Frame f = t.scene.make_frame(t.id, test::pose_at(predicted + 0.03));
+    f.set_dynamic_mask(mask_of_left_part(0.6));
+    const TrackingResult r = t.tracker.track(f);
+    EXPECT_EQ(r.state, TrackingState::Ok) << r.reason;
+    EXPECT_EQ(r.motion_prior.applied > 0, prior);
+    return centre(f).x() - predicted;  // the pose's offset from the prediction
+  };
+  const double free = jump(false);
+  const double held = jump(true);
+  EXPECT_NEAR(free, 0.03, 1e-4);  // as tracked
+  EXPECT_LT(held, free - 0.005) << held;  // 22 mm measured
+  EXPECT_GT(held, 0.0);
+}
+
+// SparseViewOptions::smooth_frames: a straight path at constant velocity
+// whose flagged frames jitter by +-10 mm across the path. Their centres come
+// back to within the jitter's remainder; unflagged frames, and the centres of
+// another map, are not used or changed.
+TEST(SparseView, SmoothingTheFlaggedCentresTakesOutTheirJitter) {
+  std::vector<Eigen::Vector3d> truth, centres;
+  std::vector<bool> sparse;
+  std::vector<std::uint64_t> maps;
+  for (int i = 0; i < 40; ++i) {
+    truth.emplace_back(0.01 * i, 0, 0);
+    const bool flagged = i >= 10 && i < 30;
+    const double jitter = flagged ? (i % 2 == 0 ? 0.01 : -0.01) : 0.0;
+    centres.push_back(truth.back() + Eigen::Vector3d(0, jitter, 0));
+    sparse.push_back(flagged);
+    maps.push_back(i < 35 ? 1 : 2);
+  }
+  centres[36] += Eigen::Vector3d(0, 1, 0);  // another map's frame, far off: never averaged in
+  sparse[34] = true;                         // its window reaches into map 2
+  const std::vector<Eigen::Vector3d> given = centres;
+  smooth_sparse_centres(centres, sparse, maps, 3);
+  for (int i = 0; i < 40; ++i) {
+    const double error = (centres[i] - truth[i]).norm();
+    if (i >= 13 && i < 27) {
+      EXPECT_LT(error, 0.0015) << i;  // a window of 7: 1 of the 10 mm left
+    } else if (!sparse[i]) {
+      EXPECT_EQ(centres[i], given[i]) << i;
+    }
+  }
+  // Frames 31..34 of map 1 only (the window is one-sided there).
+  EXPECT_LT((centres[34] - (given[31] + given[32] + given[33] + given[34]) / 4).norm(), 1e-12);
+  // Off: nothing moves.
+  std::vector<Eigen::Vector3d> off = given;
+  smooth_sparse_centres(off, sparse, maps, 0);
+  EXPECT_EQ(off, given);
 }
 
 }  // namespace

@@ -24,6 +24,9 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
   keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");
+  keys.flag("sparseViewKeyframes", options.sparse_view.keyframes, "SparseViewOptions.keyframes");
+  keys.flag("sparseViewPrior", options.sparse_view.prior, "SparseViewOptions.prior");
+  keys.integer("sparseViewSmoothFrames", options.sparse_view.smooth_frames, "SparseViewOptions.smooth_frames", {0, 100});
   keys.number("sparseViewMaskedShare", options.sparse_view.masked_share, "SparseViewOptions.masked_share", {0, 1});
   keys.integer("sparseViewInliers", options.sparse_view.inliers, "SparseViewOptions.inliers", {0, 100000});
   keys.number("sparseViewTrackedWeight", options.sparse_view.tracked_weight, "SparseViewOptions.tracked_weight",

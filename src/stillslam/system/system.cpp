@@ -14,6 +14,7 @@
 #include "stillslam/segmentation/coco_classes.h"
 #include "stillslam/segmentation/yolo_segmenter.h"
 #include "stillslam/system/snapshot_instances.h"
+#include "stillslam/tracking/sparse_view.h"
 #include "stillslam/tracking/keypoint_pixels.h"
 
 namespace stillslam {
@@ -210,6 +211,7 @@ void System::build_pipeline(const Settings& settings) {
   tracking.localization_only = options_.localization_only;
   tracking.probe = options_.tracking_probe;
   tracking.sparse_view = settings.motion.sparse_view;
+  sparse_view_smooth_frames_ = settings.motion.sparse_view.enabled ? settings.motion.sparse_view.smooth_frames : 0;
   tracking.static_evidence.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_pose;
   // Held keyframes are checked later instead of deferred.
   if (async_masks_ && !keyframe_hold_ && !provisional_points_) {
@@ -561,6 +563,9 @@ FrameStats System::process(const SensorFrame& input) {
   last_T_world_cam_.reset();
   if (result.state == TrackingState::Ok && frame.has_pose() && result.reference) {
     records_.push_back({frame.timestamp(), result.reference, result.T_cam_reference, result.new_keyframe, {}});
+    records_.back().sparse_view = result.sparse_view == SparseView::Tracked ||
+                                  result.sparse_view == SparseView::Blended ||
+                                  result.sparse_view == SparseView::Predicted;
     if (options_.trajectory_refinement.enabled) {
       // It reads the matched points' observations, which local mapping changes.
       std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
@@ -692,9 +697,22 @@ std::vector<MapPose> System::trajectory_with_maps() const {
     }
   }
   std::vector<MapPose> kept;
+  std::vector<bool> sparse;
   kept.reserve(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) {
-    if (done[i]) kept.push_back(out[i]);
+    if (!done[i]) continue;
+    kept.push_back(out[i]);
+    sparse.push_back(records_[i].sparse_view);
+  }
+  if (sparse_view_smooth_frames_ > 0) {
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<std::uint64_t> maps;
+    for (const MapPose& p : kept) {
+      centres.push_back(p.pose.T_world_cam.translation());
+      maps.push_back(p.map_id);
+    }
+    smooth_sparse_centres(centres, sparse, maps, sparse_view_smooth_frames_);
+    for (std::size_t i = 0; i < kept.size(); ++i) kept[i].pose.T_world_cam.translation() = centres[i];
   }
   return kept;
 }

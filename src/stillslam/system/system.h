@@ -168,6 +168,7 @@ class System {
     Eigen::Isometry3d T_cam_ref;
     bool keyframe;                   // the frame became `reference`
     FrameObservations observations;  // empty without trajectory refinement
+    bool sparse_view = false;        // the crowd fallback acted on it (Motion.sparseViewSmoothFrames)
     // As tracked, moved with its reference keyframe since. Caller holds the
     // lock of the map that holds the reference keyframe.
     Eigen::Isometry3d T_cam_world() const { return T_cam_ref * reference->T_cam_world_resolved(); }
@@ -260,6 +261,7 @@ class System {
   // The frames processed since the tracker's start candidate (frame id, input
   // index): those a start from an earlier frame poses.
   std::vector<std::pair<std::uint64_t, std::size_t>> start_inputs_;
+  int sparse_view_smooth_frames_ = 0;  // Motion.sparseViewSmoothFrames (with Motion.sparseView)
   std::uint64_t next_frame_id_ = 0;
   std::optional<Eigen::Isometry3d> last_T_world_cam_;
   int new_map_after_lost_frames_ = 0;  // 0: never

@@ -10,6 +10,7 @@ void SparseViewOptions::check() const {
   in_range("SparseViewOptions.masked_share", masked_share, 0.0, 1.0);
   in_range("SparseViewOptions.inliers", inliers, 0, 100000);
   in_range("SparseViewOptions.tracked_weight", tracked_weight, 0.0, 1.0);
+  in_range("SparseViewOptions.smooth_frames", smooth_frames, 0, 100);
 }
 
 double masked_share(const Frame& frame) { return mask_coverage(frame.dynamic_mask()); }
@@ -27,6 +28,24 @@ Eigen::Isometry3d blend_poses(const Eigen::Isometry3d& predicted, const Eigen::I
   out.linear() = qp.slerp(tracked_weight, qt).normalized().toRotationMatrix();
   out.translation() = (1.0 - tracked_weight) * p.translation() + tracked_weight * t.translation();
   return out.inverse();
+}
+
+void smooth_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
+                           const std::vector<std::uint64_t>& group, int half_window) {
+  if (half_window <= 0) return;
+  const std::vector<Eigen::Vector3d> given = centres;
+  const auto n = static_cast<std::ptrdiff_t>(given.size());
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    if (!sparse[static_cast<std::size_t>(i)]) continue;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, i - half_window); j <= std::min(n - 1, i + half_window); ++j) {
+      if (group[static_cast<std::size_t>(j)] != group[static_cast<std::size_t>(i)]) continue;
+      sum += given[static_cast<std::size_t>(j)];
+      ++count;
+    }
+    centres[static_cast<std::size_t>(i)] = sum / count;
+  }
 }
 
 }  // namespace stillslam

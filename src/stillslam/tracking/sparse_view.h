@@ -6,7 +6,9 @@
 // through the crowd. No map starts from a view the masks hide.
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "stillslam/map/frame.h"
 
@@ -20,6 +22,19 @@ struct SparseViewOptions {
   // bench/README.md, issue #19 session 8).
   int inliers = 100000;
   double tracked_weight = 0.2;   // the tracked pose's share of the blend (1: tracked pose only)
+  // Off: a sparse view makes no keyframe (its few points lie on a strip of
+  // the view, and its pose is the least certain of the path).
+  bool keyframes = true;
+  // On: a sparse view's pose stages use the motion model's prediction as a
+  // prior (TrackerOptions::motion_prior's sigmas) in every stage, without
+  // its gate and refit check.
+  bool prior = false;
+  // > 0: in the trajectory read at the end (System::trajectory), each frame
+  // the fallback flagged (tracked, blended or predicted in a sparse view)
+  // gets as camera centre the mean of the centres of the frames within this
+  // many frames of it (its own map's, as read); its rotation is kept. The
+  // tracked poses themselves are not changed. 0: off.
+  int smooth_frames = 0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -37,6 +52,13 @@ enum class SparseView {
 double masked_share(const Frame& frame);
 
 bool is_sparse_view(const Frame& frame, const SparseViewOptions& options);
+
+// SparseViewOptions::smooth_frames on a trajectory: `centres` (one per
+// frame, in order) of the frames flagged in `sparse` become the mean of the
+// centres within `half_window` frames that share their `group` (map id),
+// each computed from the centres as given.
+void smooth_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
+                           const std::vector<std::uint64_t>& group, int half_window);
 
 // `tracked_weight` of the way from `predicted` to `tracked` (rotation by
 // slerp, camera centre linearly); both are T_cam_world.

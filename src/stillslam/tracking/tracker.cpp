@@ -137,8 +137,10 @@ TrackingResult Tracker::track(Frame& frame) {
       for (std::size_t i = 0; i < frame.size(); ++i) rejected[i] = frame.map_point(i) && frame.is_outlier(i);
     }
     // A predicted pose matched nothing: no keyframe from it.
+    // Nor from a sparse view when the fallback makes none (SparseViewOptions::keyframes).
+    const bool sparse_keyframe = options_.sparse_view.keyframes || !is_sparse_view(frame, options_.sparse_view);
     bool want_keyframe = !options_.localization_only && result.sparse_view != SparseView::Predicted &&
-                         need_new_keyframe(frame, result.inliers);
+                         sparse_keyframe && need_new_keyframe(frame, result.inliers);
     if (want_keyframe && options_.max_keyframe_mask_age >= 0 && frame.mask_age() > options_.max_keyframe_mask_age) {
       result.keyframe_deferred = true;  // no map points from a stale mask: a later frame
       want_keyframe = false;
@@ -556,9 +558,13 @@ void Tracker::cull_outlier_streaks(const Frame& frame, int inliers) {
 
 int Tracker::refine_stage_pose(Frame& frame, TrackingResult& result) {
   MotionPriorStep step;
-  const int inliers =
-      refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_, options_.motion_prior, &step,
-                             &start_evidence_);
+  MotionPriorOptions prior_options = options_.motion_prior;
+  if (options_.sparse_view.prior && is_sparse_view(frame, options_.sparse_view)) {
+    prior_options.gate = 0;  // the crowd fallback: the prediction in every stage
+    prior_options.refit = false;
+  }
+  const int inliers = refine_pose_with_prior(frame, options_.pose, options_.static_evidence, motion_prior_,
+                                             prior_options, &step, &start_evidence_);
   result.motion_prior.add(step);
   return inliers;
 }
