@@ -129,7 +129,8 @@ TEST(NearPerson, TheTrackerMakesNoDepthPointNearTheCarriedPerson) {
     options.init_min_keypoints = 300;
     if (rule) options.near_person = on();
     Tracker tracker(map, options, {});
-    for (std::uint64_t i = 0; i < 3; ++i) {
+    // Unmasked frames (carried instances only): the start check's 3 frames confirm frame 0, the first keyframe.
+    for (std::uint64_t i = 0; i < 4; ++i) {
       Frame f = scene.make_frame(i, test::pose_at(0.01 * static_cast<double>(i)));
       f.set_mask_age(4);  // radius 20 px
       f.set_carried_instances(person());
@@ -137,11 +138,12 @@ TEST(NearPerson, TheTrackerMakesNoDepthPointNearTheCarriedPerson) {
     }
     *skipped = tracker.near_person_skipped();
     EXPECT_EQ(map.num_keyframes(), 1u);
-    return map.keyframes().front();
+    return map.num_keyframes() ? map.keyframes().front() : nullptr;
   };
   std::size_t skipped_on = 0, skipped_off = 0;
   const KeyFramePtr with = run(true, &skipped_on), without = run(false, &skipped_off);
   EXPECT_EQ(skipped_off, 0u);
+  ASSERT_TRUE(with && without);
   ASSERT_EQ(with->size(), without->size());
   Frame frame0 = scene.make_frame(0, test::pose_at(0));
   frame0.set_mask_age(4);
