@@ -8,25 +8,11 @@
 #include "stillslam/system/realtime_summary.h"
 #include "stillslam/system/run_result_json.h"
 #include "stillslam/system/system.h"
+#include "system/corner_person.h"
 #include "system/sim_sequence.h"
 
 namespace stillslam {
 namespace {
-
-// One "person": a 40x40 square in the top-left corner of every frame.
-class CornerPerson final : public Segmenter {
- public:
-  std::vector<Detection> segment(const cv::Mat& bgr) override {
-    Detection d;
-    d.class_id = 0;
-    d.class_name = "person";
-    d.score = 1.f;
-    d.box = cv::Rect2f(0, 0, 40, 40);
-    d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
-    d.mask(cv::Rect(0, 0, 40, 40)).setTo(255);
-    return {d};
-  }
-};
 
 const test::SimSequence& sequence() {
   static const test::SimSequence seq = test::render_sim_sequence("walking_xyz", 60, 320, 240, false);
@@ -70,7 +56,7 @@ RunResult run_async(const test::SimSequence& seq, bool keyframe_hold = false, bo
   options.deterministic = true;
   options.segmenter_factory = [keyframe_hold]() -> std::unique_ptr<Segmenter> {
     if (keyframe_hold) return std::make_unique<JumpingPerson>();
-    return std::make_unique<CornerPerson>();
+    return std::make_unique<test::CornerPerson>();
   };
   System system(settings, SensorType::Rgbd, seq.stereo, options);
   RunResult out;

@@ -8,6 +8,7 @@
 
 #include "stillslam/eval/evaluate.h"
 #include "stillslam/system/system.h"
+#include "system/corner_person.h"
 #include "system/sim_sequence.h"
 
 namespace stillslam {
@@ -152,22 +153,6 @@ TEST(SystemEndToEnd, SegmenterFactoryReplacesTheModel) {
   EXPECT_EQ(calls, 5);
 }
 
-// A segmenter that finds one person in the top-left corner (a small mask:
-// the map's start is checked with masks, Tracking.initConfirmFrames).
-class CornerPerson : public Segmenter {
- public:
-  std::vector<Detection> segment(const cv::Mat& bgr) override {
-    Detection d;
-    d.class_id = 0;
-    d.class_name = "person";
-    d.score = 0.9f;
-    d.box = cv::Rect2f(0, 0, 40, 40);
-    d.mask = cv::Mat1b::zeros(bgr.size());
-    d.mask(cv::Rect(0, 0, 40, 40)).setTo(255);
-    return {d};
-  }
-};
-
 // Every third frame of a sequence (as --realtime drops frames while the
 // system is busy): the camera moves 15-20 mm between the frames processed at
 // the start of walking_xyz, several times the pose error. Frames keep their
@@ -262,7 +247,7 @@ TEST(SystemEndToEnd, TheFramesTheStartWaitedOnArePosedAtTheirGroundTruth) {
   segmented.settings.tracking.init_min_keypoints = 300;
   SystemOptions options;
   options.deterministic = true;
-  options.segmenter_factory = [] { return std::make_unique<CornerPerson>(); };
+  options.segmenter_factory = [] { return std::make_unique<test::CornerPerson>(); };
   System system(segmented.settings, SensorType::Rgbd, segmented.stereo, options);
   RunOutput masked;
   for (const SensorFrame& f : segmented.frames) {
