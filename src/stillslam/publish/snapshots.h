@@ -28,7 +28,7 @@ struct FrameSnapshot {
   // waited on (published without a pose), posed now, oldest first (the ROS 2
   // node sends their pose, tf and path before this frame's).
   struct EarlierPose {
-    std::size_t index = 0;
+    std::size_t index = 0;  // the frame's input index
     double timestamp = 0;
     Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
   };

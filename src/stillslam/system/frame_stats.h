@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "stillslam/publish/snapshots.h"
 #include "stillslam/tracking/frame_builder.h"
 #include "stillslam/tracking/motion_prior.h"
 #include "stillslam/tracking/tracking_state.h"
@@ -52,11 +53,8 @@ struct FrameStats {
   // when they were processed, posed now (the first keyframe's frame at the map's
   // origin, each confirming frame at the start check's motion from it), oldest
   // first. Their records are in the trajectory; DatasetRunner marks their stats.
-  struct EarlierPose {
-    std::size_t index = 0;  // the frame's input index (FrameStats::index)
-    double timestamp = 0;
-    Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
-  };
+  // The frame snapshot carries the same list (publish layer).
+  using EarlierPose = FrameSnapshot::EarlierPose;
   std::vector<EarlierPose> start_frames_posed;
   // Set on a frame the start waited on once the map started (DatasetRunner):
   // has_pose is then true while state and reason stay as they were when it was processed.

@@ -620,9 +620,7 @@ void System::publish(const SensorFrame& input, const Frame& frame, const FrameSt
   f->has_pose = stats.has_pose;
   if (last_T_world_cam_) f->T_world_cam = *last_T_world_cam_;
   f->map_id = atlas_->active_map_id();
-  for (const FrameStats::EarlierPose& p : stats.start_frames_posed) {
-    f->start_frames_posed.push_back({p.index, p.timestamp, p.T_world_cam});
-  }
+  f->start_frames_posed = stats.start_frames_posed;
   f->keyframe = stats.keyframe;
   f->image = input.color.empty() ? input.gray : input.color;
   f->dynamic_mask = frame.dynamic_mask();
