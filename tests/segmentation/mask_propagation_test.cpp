@@ -80,11 +80,12 @@ struct TranslatingCamera {
     return T;
   }
   // Image, depth and mask of frame k by ray casting.
-  void render(int k, cv::Mat1b& gray, cv::Mat1f& depth, cv::Mat1b& mask) const {
+  void render(int k, cv::Mat1b& gray, cv::Mat1f& depth, cv::Mat1b& mask) const { render_at(step * k, gray, depth, mask); }
+  // The same from a camera at x = cx (a stereo pair's right camera: cx + baseline).
+  void render_at(double cx, cv::Mat1b& gray, cv::Mat1f& depth, cv::Mat1b& mask) const {
     gray.create(kSize);
     depth.create(kSize);
     mask = cv::Mat1b(kSize, uchar{0});
-    const double cx = step * k;
     for (int v = 0; v < kSize.height; ++v) {
       for (int u = 0; u < kSize.width; ++u) {
         const double dx = (u - kCamera.cx) / kCamera.fx, dy = (v - kCamera.cy) / kCamera.fy;
@@ -113,7 +114,7 @@ TEST(MaskPropagation, MovingBlobFollowedByFlowFrameToFrame) {
   const MovingBlob scene;
   for (int mode : {2, 0}) {
     MaskPropagator propagator(kCamera, with_mode(mode));
-    propagator.reset({.frame_id = 10, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+    propagator.reset({.frame_id = 10, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
     for (int k = 1; k <= 6; ++k) {
       const PropagatedMasks p = propagator.propagate(10 + k, scene.image(k), {}, std::nullopt);
       ASSERT_EQ(p.instances.size(), 1u);
@@ -158,7 +159,7 @@ TEST(MaskPropagation, PartsOfOneInstanceAreFollowedApart) {
     MaskPropagationOptions o;
     o.split_min_px = split;
     MaskPropagator propagator(kCamera, o);
-    propagator.reset({.frame_id = 0, .gray = image(0), .depth = {}, .instances = {both_mask(0)}, .T_cam_world = {}});
+    propagator.reset({.frame_id = 0, .gray = image(0), .depth = {}, .right = {}, .instances = {both_mask(0)}, .T_cam_world = {}});
     PropagatedMasks p;
     for (int k = 1; k <= 6; ++k) p = propagator.propagate(k, image(k), {}, std::nullopt);
     ASSERT_EQ(p.instances.size(), split > 0 ? 2u : 1u);
@@ -175,7 +176,7 @@ TEST(MaskPropagation, BlobWalkingInFromTheBorderKeepsItsHiddenPart) {
   scene.start = {300, 120};  // the right third is outside the frame
   scene.velocity = {-8, 0};
   MaskPropagator propagator(kCamera, {});
-  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
   for (int k = 1; k <= 5; ++k) {
     const PropagatedMasks p = propagator.propagate(k, scene.image(k), {}, std::nullopt);
     ASSERT_EQ(p.instances.size(), 1u);
@@ -192,7 +193,7 @@ TEST(MaskPropagation, BlobWalkingInFromTheBorderKeepsItsHiddenPart) {
 TEST(MaskPropagation, FirstCallMaySpanSeveralFrames) {
   const MovingBlob scene;
   MaskPropagator propagator(kCamera, {});
-  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
   const PropagatedMasks p = propagator.propagate(4, scene.image(4), {}, std::nullopt);  // 25 px
   ASSERT_EQ(p.instances.size(), 1u);
   EXPECT_EQ(p.instances[0].motion, InstanceMotion::flow);
@@ -211,7 +212,7 @@ TEST(MaskPropagation, StaticObjectFollowsTheCameraMotionWithDepth) {
   double last_score[3] = {0, 0, 0};
   for (int mode : {0, 1, 2}) {
     MaskPropagator propagator(kCamera, with_mode(mode));
-    propagator.reset({.frame_id = 0, .gray = gray0, .depth = depth0, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
+    propagator.reset({.frame_id = 0, .gray = gray0, .depth = depth0, .right = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
     for (int k = 1; k <= 5; ++k) {  // 6.25 px a frame
       cv::Mat1b gray, mask;
       cv::Mat1f depth;
@@ -239,18 +240,67 @@ TEST(MaskPropagation, CameraMotionWithoutDepthOrPoseIsNotUsed) {
   scene.render(0, gray0, depth0, mask0);
   scene.render(1, gray1, depth1, mask1);
   MaskPropagator propagator(kCamera, with_mode(1));
-  propagator.reset({.frame_id = 0, .gray = gray0, .depth = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
+  propagator.reset({.frame_id = 0, .gray = gray0, .depth = {}, .right = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
   EXPECT_EQ(propagator.propagate(1, gray1, depth1, scene.T_cam_world(1)).instances[0].motion, InstanceMotion::none);
   // Sparse depth (stereo keypoints): a few pixels with depth are enough.
   cv::Mat1f sparse(kSize, 0.f);
   for (int y = 100; y < 140; y += 10) sparse(y, 160) = 2.0f;
-  propagator.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
+  propagator.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .right = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
   const PropagatedMasks p = propagator.propagate(1, gray1, {}, scene.T_cam_world(1));
   EXPECT_EQ(p.instances[0].motion, InstanceMotion::camera);
   EXPECT_GT(iou(p.instances[0].mask, mask1), 0.95);
   // No pose for this frame: nothing to move by.
-  propagator.reset({.frame_id = 0, .gray = gray0, .depth = depth0, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
+  propagator.reset({.frame_id = 0, .gray = gray0, .depth = depth0, .right = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
   EXPECT_EQ(propagator.propagate(1, gray1, depth1, std::nullopt).instances[0].motion, InstanceMotion::none);
+}
+
+// Stereo: the sparse keypoint depths under the disc are the wall's (the
+// disc's own keypoints were removed), as when a carried mask removed a
+// person's keypoints at the segmented frame. With stereoBlockDepth the
+// instance's depth comes from block matching the pair inside its mask.
+TEST(MaskPropagation, StereoBlockDepthGivesTheInstanceItsOwnDepth) {
+  const TranslatingCamera scene;
+  const double baseline = 0.1;
+  MaskPropagationCamera camera = kCamera;
+  camera.bf = camera.fx * baseline;  // disc 12.5 px of disparity, wall 5 px
+  cv::Mat1b gray0, mask0, right0, unused_mask, gray1, mask1;
+  cv::Mat1f depth0, unused_depth, depth1;
+  scene.render(0, gray0, depth0, mask0);
+  scene.render_at(baseline, right0, unused_depth, unused_mask);
+  scene.render(1, gray1, depth1, mask1);
+  cv::Mat1f sparse(kSize, 0.f);  // wall depths at a few pixels inside the disc
+  for (int y = 100; y < 140; y += 10) sparse(y, 160) = 5.0f;
+  double depth[2] = {0, 0}, score[2] = {0, 0};
+  for (bool block : {false, true}) {
+    MaskPropagationOptions o = with_mode(1);
+    o.stereo_block_depth = block;
+    MaskPropagator propagator(camera, o);
+    propagator.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .right = right0, .instances = {mask0},
+                      .T_cam_world = scene.T_cam_world(0)});
+    const PropagatedMasks p = propagator.propagate(1, gray1, {}, scene.T_cam_world(1));
+    ASSERT_EQ(p.instances.size(), 1u);
+    depth[block] = p.instances[0].depth;
+    score[block] = iou(p.instances[0].mask, mask1);
+  }
+  EXPECT_NEAR(depth[0], 5.0, 1e-3);  // the sparse depths' median
+  EXPECT_NEAR(depth[1], 2.0, 0.1);   // the disc's own
+  EXPECT_GT(score[1], 0.95);         // moved 12.5 px as the disc did, not 5 px as the wall
+  EXPECT_LT(score[0], score[1] - 0.05);
+  // Without a right image, or for a camera without bf, the option does nothing.
+  MaskPropagationOptions o = with_mode(1);
+  o.stereo_block_depth = true;
+  MaskPropagator no_bf(kCamera, o);
+  no_bf.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .right = right0, .instances = {mask0},
+               .T_cam_world = scene.T_cam_world(0)});
+  EXPECT_NEAR(no_bf.propagate(1, gray1, {}, scene.T_cam_world(1)).instances[0].depth, 5.0, 1e-3);
+  MaskPropagator no_right(camera, o);
+  no_right.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .right = {}, .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)});
+  EXPECT_NEAR(no_right.propagate(1, gray1, {}, scene.T_cam_world(1)).instances[0].depth, 5.0, 1e-3);
+  // A right image of another size is an error.
+  MaskPropagator bad(camera, o);
+  EXPECT_THROW(bad.reset({.frame_id = 0, .gray = gray0, .depth = sparse, .right = cv::Mat1b(10, 10, uchar{0}),
+                          .instances = {mask0}, .T_cam_world = scene.T_cam_world(0)}),
+               Error);
 }
 
 TEST(MaskPropagation, SameInputsGiveTheSameMasks) {  // --deterministic runs rely on it
@@ -261,7 +311,7 @@ TEST(MaskPropagation, SameInputsGiveTheSameMasks) {  // --deterministic runs rel
     cv::Mat1f depth;
     scene.render(0, gray, depth, mask);
     MaskPropagator propagator(kCamera, {});
-    propagator.reset({.frame_id = 0, .gray = gray, .depth = depth, .instances = {mask}, .T_cam_world = scene.T_cam_world(0)});
+    propagator.reset({.frame_id = 0, .gray = gray, .depth = depth, .right = {}, .instances = {mask}, .T_cam_world = scene.T_cam_world(0)});
     for (int k = 1; k <= 3; ++k) {
       scene.render(k, gray, depth, mask);
       const PropagatedMasks p = propagator.propagate(k, gray, depth, scene.T_cam_world(k));
@@ -284,7 +334,7 @@ TEST(MaskPropagation, MarginGrowsWithAge) {
   EXPECT_EQ(propagator.margin_px(0), 2);
   EXPECT_EQ(propagator.margin_px(2), 5);
   EXPECT_EQ(propagator.margin_px(10), 10);  // capped
-  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
   int previous_margin = 0;
   for (int k = 1; k <= 5; ++k) {
     const PropagatedMasks p = propagator.propagate(k, scene.image(k), {}, std::nullopt);
@@ -334,7 +384,7 @@ TEST(MaskPropagation, EmptyAndFlatInstances) {
   const MovingBlob scene;
   MaskPropagator propagator(kCamera, {});
   EXPECT_TRUE(propagator.empty());
-  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {cv::Mat1b(kSize, uchar{0})}, .T_cam_world = {}});
+  propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {cv::Mat1b(kSize, uchar{0})}, .T_cam_world = {}});
   EXPECT_FALSE(propagator.empty());
   PropagatedMasks p = propagator.propagate(1, scene.image(1), {}, std::nullopt);
   EXPECT_TRUE(p.instances.empty());
@@ -342,7 +392,7 @@ TEST(MaskPropagation, EmptyAndFlatInstances) {
   EXPECT_EQ(cv::countNonZero(p.union_mask), 0);
   // A textureless instance has no points to track: it is held where it was.
   cv::Mat1b flat(kSize, uchar{128});
-  propagator.reset({.frame_id = 0, .gray = flat, .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  propagator.reset({.frame_id = 0, .gray = flat, .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
   p = propagator.propagate(1, flat, {}, std::nullopt);
   ASSERT_EQ(p.instances.size(), 1u);
   EXPECT_EQ(p.instances[0].motion, InstanceMotion::none);
@@ -353,10 +403,10 @@ TEST(MaskPropagation, BadInputsAreClearErrors) {
   const MovingBlob scene;
   MaskPropagator propagator(kCamera, {});
   EXPECT_THROW(propagator.propagate(1, scene.image(1), {}, std::nullopt), Error);  // no reset yet
-  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = {}, .depth = {}, .instances = {}, .T_cam_world = {}}), Error);
-  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .instances = {cv::Mat1b(10, 10, uchar{0})}, .T_cam_world = {}}), Error);
-  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = cv::Mat1f(5, 5, 1.f), .instances = {}, .T_cam_world = {}}), Error);
-  propagator.reset({.frame_id = 5, .gray = scene.image(0), .depth = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
+  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = {}, .depth = {}, .right = {}, .instances = {}, .T_cam_world = {}}), Error);
+  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {cv::Mat1b(10, 10, uchar{0})}, .T_cam_world = {}}), Error);
+  EXPECT_THROW(propagator.reset({.frame_id = 0, .gray = scene.image(0), .depth = cv::Mat1f(5, 5, 1.f), .right = {}, .instances = {}, .T_cam_world = {}}), Error);
+  propagator.reset({.frame_id = 5, .gray = scene.image(0), .depth = {}, .right = {}, .instances = {scene.mask(0)}, .T_cam_world = {}});
   EXPECT_THROW(propagator.propagate(5, scene.image(1), {}, std::nullopt), Error);  // not after the last frame
   EXPECT_THROW(propagator.propagate(6, cv::Mat1b(10, 10, uchar{0}), {}, std::nullopt), Error);
   EXPECT_THROW(propagator.propagate(6, scene.image(1), cv::Mat1f(10, 10, 1.f), std::nullopt), Error);

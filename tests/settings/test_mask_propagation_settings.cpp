@@ -26,7 +26,7 @@ TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
                         "MaskPropagation.maxMarginPx: 40\nMaskPropagation.pointsPerInstance: 80\n"
                         "MaskPropagation.lkWindowPx: 21\nMaskPropagation.lkLevels: 4\n"
                         "MaskPropagation.fbMaxErrorPx: 0\nMaskPropagation.maxDepth: 8\n"
-                        "MaskPropagation.splitMinPx: 0\n"));
+                        "MaskPropagation.splitMinPx: 0\nMaskPropagation.stereoBlockDepth: 1\n"));
   EXPECT_EQ(s.mask_propagation.mode, 1);
   EXPECT_EQ(s.mask_propagation.margin_px, 6);
   EXPECT_DOUBLE_EQ(s.mask_propagation.margin_px_per_frame, 2.5);
@@ -38,6 +38,8 @@ TEST(MaskPropagationSettings, KeysBindAndDefaultsStay) {
   EXPECT_DOUBLE_EQ(s.mask_propagation.max_depth_m, 8);
   EXPECT_EQ(defaults.mask_propagation.split_min_px, 400);
   EXPECT_EQ(s.mask_propagation.split_min_px, 0);
+  EXPECT_FALSE(defaults.mask_propagation.stereo_block_depth);
+  EXPECT_TRUE(s.mask_propagation.stereo_block_depth);
 }
 
 TEST(MaskPropagationSettings, BadValuesNameTheKey) {
@@ -50,6 +52,8 @@ TEST(MaskPropagationSettings, BadValuesNameTheKey) {
             std::string::npos);
   EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.marginPx: 9\nMaskPropagation.maxMarginPx: 5\n")
                 .find("MaskPropagation.maxMarginPx"),
+            std::string::npos);
+  EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.stereoBlockDepth: 2\n").find("MaskPropagation.stereoBlockDepth"),
             std::string::npos);
   EXPECT_NE(test::settings_error(dir, kBase + "MaskPropagation.lkWindow: 21\n").find("known keys"), std::string::npos);
 }

@@ -79,6 +79,7 @@ cv::Mat1b AsyncMasks::propagated(std::size_t frame_index, const cv::Mat1b& gray,
     fresh.frame_id = fresh_->frame_index;
     fresh.gray = kept->second.gray;
     fresh.depth = kept->second.depth;
+    fresh.right = kept->second.right;
     fresh.instances = fresh_->instances;
     // Instances the segmenter lost (MaskHold) move like the others: with the
     // camera and their own flow, not left where they were in the image.
@@ -102,7 +103,7 @@ bool AsyncMasks::stage_busy() const { return stage_.threaded() ? stage_.busy() :
 void AsyncMasks::submit(const cv::Mat& bgr, std::size_t frame_index) {
   ordinals_[frame_index] = processed_ - 1;  // mask_for() counted this frame already
   if (propagator_ && !pending_gray_.empty()) {
-    submitted_[frame_index] = Submitted{pending_gray_, pending_depth_, std::nullopt};
+    submitted_[frame_index] = Submitted{pending_gray_, pending_depth_, std::nullopt, pending_right_};
   }
   stage_.submit(bgr, frame_index);
   if (!stage_.threaded()) pending_.push_back(stage_.latest());
@@ -158,10 +159,11 @@ cv::Mat1b AsyncMasks::carried(const SegmentationResult& result, int age) const {
 }
 
 FrameMask AsyncMasks::mask_for(const cv::Mat& bgr, std::size_t frame_index, const cv::Mat& gray,
-                               const cv::Mat& depth) {
+                               const cv::Mat& depth, const cv::Mat& right) {
   FrameMask out;
   pending_gray_ = gray;
   pending_depth_ = depth;
+  pending_right_ = right;
   const std::size_t ordinal = processed_++;
   collect(ordinal);
   if (needed_ && fresh_ && fresh_->frame_index >= *needed_) needed_.reset();

@@ -67,9 +67,11 @@ class AsyncMasks {
 
   // bgr: the frame's colour image; frame_index: SensorFrame::index
   // (increasing); gray (8UC1) and depth (CV_32F metres, may be empty): for
-  // the propagator, which then runs on every frame with a carried mask.
+  // the propagator, which then runs on every frame with a carried mask;
+  // right (8UC1, may be empty): stereo's rectified right image, kept with a
+  // segmented frame for the propagator's instance depths.
   FrameMask mask_for(const cv::Mat& bgr, std::size_t frame_index, const cv::Mat& gray = {},
-                     const cv::Mat& depth = {});
+                     const cv::Mat& depth = {}, const cv::Mat& right = {});
 
   // After tracking a frame: its pose (nullopt: not tracked), and for stereo
   // its keypoint depths as a sparse depth image (empty otherwise), for
@@ -129,12 +131,14 @@ class AsyncMasks {
     cv::Mat1b gray;
     cv::Mat1f depth;
     std::optional<Eigen::Isometry3d> T_cam_world;
+    cv::Mat1b right;
   };
   std::optional<MaskPropagator> propagator_;
   int dilation_px_ = 0;
   std::map<std::size_t, Submitted> submitted_;
   cv::Mat1b pending_gray_;  // of the frame in mask_for()
   cv::Mat1f pending_depth_;
+  cv::Mat1b pending_right_;
   std::optional<std::size_t> reset_from_;      // the fresh frame the propagator started from
   std::optional<std::size_t> last_propagated_;  // the frame it last carried the masks to (or reset_from_)
   // The last two tracked poses (frame index, T_cam_world), for the motion prediction.

@@ -51,6 +51,36 @@ float median_depth_in(const cv::Mat1b& mask, const cv::Mat1f& depth, const MaskP
   return *mid;
 }
 
+// Depths (metres) from block matching the rectified left and right images
+// around the mask (cv::StereoBM, 11 px blocks, disparities 1 to 128 px at
+// most: depths from bf / 128 on, and from min_depth_m on): a frame-size
+// image, 0 where unknown (outside the mask's bounding box, weak texture, no
+// unique match, or the search range cut by the left image border).
+cv::Mat1f block_depth(const cv::Mat1b& left, const cv::Mat1b& right, const cv::Mat1b& mask, double bf,
+                      const MaskPropagationOptions& o) {
+  cv::Mat1f depth(mask.size(), 0.f);
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return depth;
+  const int block = 11;
+  const int disparities = std::clamp(16 * static_cast<int>(std::ceil(bf / o.min_depth_m / 16)), 16, 128);
+  const int x0 = std::max(0, box.x - disparities);
+  const int y0 = std::max(0, box.y - block / 2), y1 = std::min(mask.rows, box.y + box.height + block / 2);
+  const cv::Rect roi(x0, y0, box.x + box.width - x0, y1 - y0);
+  if (roi.width <= block || roi.height <= block) return depth;
+  cv::Mat disparity;  // CV_16S, 16 x the disparity; <= 0: no match
+  cv::StereoBM::create(disparities, block)->compute(left(roi), right(roi), disparity);
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const short* d = disparity.ptr<short>(y - y0);
+    float* z = depth.ptr<float>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (d[x - x0] <= 0) continue;
+      const float zz = static_cast<float>(16.0 * bf / d[x - x0]);
+      if (zz >= o.min_depth_m && zz <= o.max_depth_m) z[x] = zz;
+    }
+  }
+  return depth;
+}
+
 // Good features inside the mask eroded by erode_px (the mask itself when the
 // erosion leaves nothing), searched only in the mask's bounding box.
 std::vector<cv::Point2f> features_in(const cv::Mat1b& gray, const cv::Mat1b& mask, const MaskPropagationOptions& o) {
@@ -189,6 +219,10 @@ void MaskPropagator::reset(SegmentedFrame fresh) {
       throw Error("MaskPropagator::reset: an instance mask is " + size_text(m.size()) + " but the image is " +
                   size_text(size));
   }
+  const bool block = options_.stereo_block_depth && options_.mode >= 1 && camera_.bf > 0 && !fresh.right.empty();
+  if (block && fresh.right.size() != size)
+    throw Error("MaskPropagator::reset: the right image is " + size_text(fresh.right.size()) + " but the image is " +
+                size_text(size));
   tracks_.clear();
   std::vector<cv::Mat1b> parts;
   for (const cv::Mat1b& m : fresh.instances) {
@@ -198,11 +232,19 @@ void MaskPropagator::reset(SegmentedFrame fresh) {
   for (cv::Mat1b& part : parts) {
     Track t;
     t.mask = std::move(part);
-    if (options_.mode >= 1) t.median_depth = median_depth_in(t.mask, fresh.depth, options_);
+    cv::Mat1f dense;  // block matching: the instance's own depths
+    if (block) {
+      dense = block_depth(fresh.gray, fresh.right, t.mask, camera_.bf, options_);
+      t.median_depth = median_depth_in(t.mask, dense, options_);
+    }
+    if (options_.mode >= 1 && !(t.median_depth > 0)) t.median_depth = median_depth_in(t.mask, fresh.depth, options_);
     if (options_.mode == 2) {
       t.points = features_in(fresh.gray, t.mask, options_);
       t.depth.reserve(t.points.size());
-      for (const cv::Point2f& p : t.points) t.depth.push_back(valid_depth(fresh.depth, p, options_));
+      for (const cv::Point2f& p : t.points) {
+        const float z = valid_depth(fresh.depth, p, options_);
+        t.depth.push_back(z > 0 || dense.empty() ? z : valid_depth(dense, p, options_));
+      }
     }
     tracks_.push_back(std::move(t));
   }

@@ -23,6 +23,7 @@ namespace stillslam {
 // pass PinholeCamera's fx(), fy(), cx(), cy()).
 struct MaskPropagationCamera {
   double fx = 0, fy = 0, cx = 0, cy = 0;
+  double bf = 0;  // stereo: fx times the baseline (metres); depth = bf / disparity. 0: not stereo
 };
 
 // MaskPropagation.* settings.
@@ -48,6 +49,13 @@ struct MaskPropagationOptions {
   // One mask over several people (merged detections, a union of masks) then
   // follows each person instead of fitting one motion to all.
   int split_min_px = 400;
+  // Stereo (a rectified right image given with the fresh frame, the camera's
+  // bf > 0): each fresh instance's depth is the median of a block-matching
+  // disparity (cv::StereoBM) over its mask, instead of the median of the
+  // sparse depths under it; flow points without a depth of their own take
+  // theirs from it too. Sparse keypoint depths are few inside a person
+  // whose keypoints a carried mask removed; the dense ones are not.
+  bool stereo_block_depth = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -60,6 +68,9 @@ struct SegmentedFrame {
   // written at their pixels); an instance's pixels without depth use the median
   // depth of those with depth. Empty: no depth (camera motion then unused).
   cv::Mat1f depth;
+  // Stereo: the rectified right image (empty: none). Used with
+  // stereo_block_depth and the camera's bf.
+  cv::Mat1b right;
   std::vector<cv::Mat1b> instances;  // frame-size, 255 inside, undilated; one per dynamic instance
   std::optional<Eigen::Isometry3d> T_cam_world;
 };

@@ -25,6 +25,7 @@ void bind_mask_propagation(const YamlReader& yaml, MaskPropagationOptions& optio
   keys.number("minDepth", options.min_depth_m, "MaskPropagationOptions.min_depth_m", {0, 1000, true});
   keys.number("maxDepth", options.max_depth_m, "MaskPropagationOptions.max_depth_m", {0, 10000, true});
   keys.integer("splitMinPx", options.split_min_px, "MaskPropagationOptions.split_min_px", {0, 1000000});
+  keys.flag("stereoBlockDepth", options.stereo_block_depth, "MaskPropagationOptions.stereo_block_depth");
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

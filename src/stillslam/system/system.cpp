@@ -112,7 +112,8 @@ void System::build_pipeline(const Settings& settings) {
           DynamicMaskMaker(std::move(segmenter), dynamic_class_ids_, settings.segmentation.mask_dilation, hold),
           mode == WorkerMode::Threaded, settings.segmentation.thread_nice);
       const PinholeCamera& camera = setup_->camera;
-      MaskPropagator propagator(MaskPropagationCamera{camera.fx(), camera.fy(), camera.cx(), camera.cy()},
+      MaskPropagator propagator(MaskPropagationCamera{camera.fx(), camera.fy(), camera.cx(), camera.cy(),
+                                                     sensor_ == SensorType::Stereo ? camera.bf() : 0.0},
                                 settings.mask_propagation);
       async_masks_ = std::make_unique<AsyncMasks>(*segmentation_stage_, AsyncMaskOptions::from(settings.segmentation),
                                                   std::move(propagator), settings.segmentation.mask_dilation);

@@ -87,7 +87,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     if (dynamics) dynamics->detections = std::move(seg.detections);
   } else if (async_ != nullptr) {
     // Waits only when the newest mask is too old (async_masks.h).
-    const FrameMask m = async_->mask_for(color, input.index, input.gray, input.depth);
+    const FrameMask m = async_->mask_for(color, input.index, input.gray, input.depth, input.right);
     st.segmentation_wait_ms = m.wait_ms;
     st.propagation_cpu_ms = m.propagation_cpu_ms;
     st.segmentation_ms = m.age == 0 ? m.source->time_ms : 0;
