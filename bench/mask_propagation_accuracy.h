@@ -163,7 +163,7 @@ inline int run_propagation_bench(const PropagationBenchOptions& b) {
       o.mode = variants[v].mode;
       MaskPropagator propagator(camera, o);
       const ThreadCpuStopwatch reset_cpu;
-      propagator.reset({.frame_id = k, .gray = f0.gray, .depth = f0.depth, .instances = fresh,
+      propagator.reset({.frame_id = k, .gray = f0.gray, .depth = f0.depth, .right = {}, .instances = fresh,
                         .T_cam_world = T_cam_world_of(gt[k])});
       reset_ms[v] += reset_cpu.elapsed_ms();
       counts[v][0].add(dynamic_mask(fresh, f0.gray.size(), propagator.margin_px(0)), f0.truth);
