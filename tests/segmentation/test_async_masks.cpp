@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+
 #include "segmentation/gated_segmenter.h"
 
 namespace stillslam {
@@ -201,6 +203,71 @@ class FoundOnceSegmenter final : public Segmenter {
     return {d};
   }
 };
+
+// A "person" square of 40x40 at (160, 40) in a 320x120 frame, in every frame.
+class SquarePersonSegmenter final : public Segmenter {
+ public:
+  std::vector<Detection> segment(const cv::Mat& bgr) override { return segment_frame(bgr, 0); }
+  std::vector<Detection> segment_frame(const cv::Mat& bgr, std::size_t) override {
+    Detection d;
+    d.class_id = 0;
+    d.class_name = "person";
+    d.score = 1.f;
+    d.box = cv::Rect2f(160, 40, 40, 40);
+    d.mask = cv::Mat1b::zeros(bgr.rows, bgr.cols);
+    d.mask(cv::Rect(160, 40, 40, 40)).setTo(255);
+    return {d};
+  }
+};
+
+// Stereo: the segmented frame's right image reaches the propagator, which
+// (MaskPropagation.stereoBlockDepth) gives the carried person the depth of
+// its own disparity (1 m: 10 px at bf 10) instead of the sparse keypoint
+// depths written under it after tracking (the wall's 5 m).
+TEST(AsyncMasks, StereoRightImageGivesTheCarriedPersonItsDepth) {
+  const cv::Size size(320, 120);
+  cv::RNG rng(7);
+  cv::Mat1b wall(size.height, size.width + 20), person(size.height, size.width + 20);
+  rng.fill(wall, cv::RNG::UNIFORM, 0, 256);
+  rng.fill(person, cv::RNG::UNIFORM, 0, 256);
+  // Left: the person in x 160..199 at disparity 10, the wall elsewhere at 2.
+  cv::Mat1b left(size), right(size);
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = 0; x < size.width; ++x) {
+      const bool on_person = x >= 160 && x < 200 && y >= 40 && y < 80;
+      left(y, x) = on_person ? person(y, x) : wall(y, x);
+      const bool right_on_person = x + 10 >= 160 && x + 10 < 200 && y >= 40 && y < 80;
+      right(y, x) = right_on_person ? person(y, x + 10) : wall(y, x + 2);
+    }
+  }
+  cv::Mat1f sparse(size, 0.f);  // wall depths at a few pixels inside the person
+  for (int y = 45; y < 80; y += 10) sparse(y, 180) = 5.f;
+  const cv::Mat bgr(size, CV_8UC3, cv::Scalar::all(50));
+  float depth[2] = {0, 0};
+  for (bool block : {false, true}) {
+    SegmentationStage stage(DynamicMaskMaker(std::make_unique<SquarePersonSegmenter>(), {0}, 0, MaskHoldOptions{.frames = 0}),
+                            false);
+    MaskPropagationOptions camera_only;
+    camera_only.mode = 1;
+    camera_only.stereo_block_depth = block;
+    const MaskPropagationCamera camera{.fx = 100, .fy = 100, .cx = 160, .cy = 60, .bf = 10};
+    // Every frame segmented, its mask usable one frame later: frame 1's mask
+    // is carried to frame 2 from frame 1's sparse depths and right image.
+    AsyncMasks masks(stage, options(1, 1, 10), MaskPropagator(camera, camera_only), 0);
+    masks.mask_for(bgr, 0, left, {}, right);  // waits for its own mask (the first frame)
+    masks.on_tracked(0, Eigen::Isometry3d::Identity(), sparse);
+    masks.mask_for(bgr, 1, left, {}, right);
+    ASSERT_TRUE(masks.wants_sparse_depth(1));
+    masks.on_tracked(1, Eigen::Isometry3d::Identity(), sparse);
+    const FrameMask m = masks.mask_for(bgr, 2, left, {}, right);
+    ASSERT_EQ(m.source->frame_index, 1u);
+    ASSERT_EQ(m.age, 1);
+    ASSERT_EQ(m.instances.size(), 1u);
+    depth[block] = m.instances[0].depth;
+  }
+  EXPECT_FLOAT_EQ(depth[0], 5.f);
+  EXPECT_NEAR(depth[1], 1.f, 0.05);
+}
 
 TEST(AsyncMasks, HeldInstancesMoveWithTheCamera) {
   SegmentationStage stage(DynamicMaskMaker(std::make_unique<FoundOnceSegmenter>(), {0}, 0,
