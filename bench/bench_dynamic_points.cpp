@@ -5,6 +5,16 @@
 //
 //   build/bench/bench_dynamic_points --config S.yaml --input SIMDIR [--oracle-masks]
 //       [--deterministic] [--max-frames N] [--window N] [--json OUT]
+//       [--oracle-instances] [--matches-csv OUT]
+//
+// --oracle-instances: segmentation on with the folder's instances/ (one
+// detection per instance, as bench_slam --oracle-instances) instead of masks/.
+// --matches-csv: one row per local-map match of every frame (frame, keypoint
+// pixel and octave, outlier flag, the frame's depth there, the map point's id,
+// position, first keyframe's frame and observation count, the frame's tracked
+// pose, the keypoint's distance to the exact mask, and with --twin the depth
+// of the same path without movers at the keypoint), to check each match
+// against the ground truth offline.
 //
 // "Dynamic" keypoint: within --margin px of the frame's ground-truth mask.
 // Per stage (motion model, reference keyframe, lost, local map): matches and
@@ -30,6 +40,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "oracle_instance_segmenter.h"
 #include "oracle_segmenter.h"
 #include "stillslam/io/trajectory.h"
 #include "stillslam/settings/settings.h"
@@ -42,8 +53,9 @@ using namespace stillslam;
 namespace {
 
 struct Args {
-  std::string config, input, json, groundtruth;
-  bool oracle = false, deterministic = false;
+  std::string config, input, json, groundtruth, matches_csv, twin;
+  double depth_factor = 5000;
+  bool oracle = false, oracle_instances = false, deterministic = false;
   std::size_t max_frames = 0;
   int window = 30;
   int margin = 2;
@@ -92,12 +104,24 @@ class DynamicCounter {
     return x >= 0 && y >= 0 && x < m.cols && y < m.rows && m(y, x) != 0;
   }
 
+  // `mask_files`: the exact masks (undilated) for the distance column;
+  // `twin_depth`: depth images of the same path without the movers (may be empty).
+  void dump_matches_to(std::ofstream* out, std::vector<fs::path> mask_files, std::vector<fs::path> twin_depth,
+                       double depth_factor) {
+    csv_ = out;
+    mask_files_ = std::move(mask_files);
+    twin_depth_ = std::move(twin_depth);
+    depth_factor_ = depth_factor;
+  }
+
   void on_stage(TrackingStage stage, const Frame& frame, const Map& map) {
     FrameRecord& r = record(frame.id());
     if (stage == TrackingStage::NewKeyFrame) {
+      if (const KeyFramePtr& kf = frame.reference_keyframe()) keyframe_frames_[kf->id()] = frame.id();
       on_keyframe(frame, map, r);
       return;
     }
+    if (stage == TrackingStage::LocalMap && csv_) write_matches(frame);
     StageCount& c = stages_[stage];
     ++c.frames;
     int matches = 0, dyn_matches = 0, inliers = 0, dyn_inliers = 0;
@@ -209,6 +233,42 @@ class DynamicCounter {
     alive_.emplace_back(alive, alive_dynamic);
   }
 
+  void write_matches(const Frame& frame) {
+    // Distance of each pixel to the nearest exact-mask pixel; the twin's depth.
+    cv::Mat1f distance;
+    if (frame.id() < mask_files_.size()) {
+      const cv::Mat1b m = cv::imread(mask_files_[frame.id()].string(), cv::IMREAD_GRAYSCALE) == 0;
+      cv::distanceTransform(m, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    }
+    cv::Mat twin;
+    if (frame.id() < twin_depth_.size()) twin = cv::imread(twin_depth_[frame.id()].string(), cv::IMREAD_UNCHANGED);
+    const Eigen::Isometry3d T = frame.T_cam_world();
+    const Eigen::Quaterniond q(T.linear());
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      const MapPointPtr& mp = frame.map_point(i);
+      if (!mp) continue;
+      const cv::KeyPoint& kp = frame.keypoint(i);
+      const auto born = keyframe_frames_.find(mp->first_keyframe_id());
+      const long born_frame = born == keyframe_frames_.end() ? -1 : static_cast<long>(born->second);
+      const Eigen::Vector3d& p = mp->position();
+      const int x = std::max(0, static_cast<int>(std::lround(kp.pt.x)));
+      const int y = std::max(0, static_cast<int>(std::lround(kp.pt.y)));
+      const float dist = !distance.empty() && x < distance.cols && y < distance.rows ? distance(y, x) : -1.f;
+      const double twin_z = !twin.empty() && x < twin.cols && y < twin.rows
+                                ? static_cast<double>(twin.at<std::uint16_t>(y, x)) / depth_factor_
+                                : -1.0;
+      *csv_ << frame.id() << ',' << kp.pt.x << ',' << kp.pt.y << ',' << kp.octave << ',' << frame.is_outlier(i) << ','
+            << frame.depth(i) << ',' << mp->id() << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << born_frame
+            << ',' << mp->num_observations() << ',' << T.translation().x() << ',' << T.translation().y() << ','
+            << T.translation().z() << ',' << q.x() << ',' << q.y() << ',' << q.z() << ',' << q.w() << ',' << dist << ','
+            << twin_z << '\n';
+    }
+  }
+
+  std::ofstream* csv_ = nullptr;
+  std::vector<fs::path> mask_files_, twin_depth_;
+  double depth_factor_ = 5000;
+  std::unordered_map<std::uint64_t, std::uint64_t> keyframe_frames_;  // keyframe id -> frame id
   std::vector<cv::Mat1b> masks_;
   StaticEvidenceOptions evidence_;
   std::map<TrackingStage, StageCount> stages_;
@@ -246,9 +306,26 @@ int run(const Args& a) {
   }
   DynamicCounter counter(std::move(masks), settings.tracking.static_evidence);
 
+  std::ofstream csv;
+  if (!a.matches_csv.empty()) {
+    csv.open(a.matches_csv);
+    if (!csv) throw Error(a.matches_csv + ": cannot write");
+    csv.precision(9);
+    csv << "frame,u,v,octave,outlier,depth,point,x,y,z,born_frame,observations,tx,ty,tz,qx,qy,qz,qw,mask_distance,twin_depth\n";
+    std::vector<fs::path> twin;
+    if (!a.twin.empty()) {
+      for (const TumPair& p : read_tum_associations(fs::path(a.twin) / "associations.txt")) {
+        twin.push_back(fs::path(a.twin) / p.depth_file);
+      }
+    }
+    counter.dump_matches_to(&csv, oracle::oracle_mask_files(a.input), std::move(twin), a.depth_factor);
+  }
+
   RunOptions options;
-  options.system.use_segmentation = a.oracle;
-  if (a.oracle) {
+  options.system.use_segmentation = a.oracle || a.oracle_instances;
+  if (a.oracle_instances) {
+    options.system.segmenter_factory = [dir = a.input] { return std::make_unique<oracle::OracleInstanceSegmenter>(dir); };
+  } else if (a.oracle) {
     options.system.segmenter_factory = [dir = a.input] { return std::make_unique<oracle::OracleSegmenter>(dir); };
   }
   options.system.deterministic = a.deterministic;
@@ -279,7 +356,8 @@ int run(const Args& a) {
   }
 
   std::printf("%s (%s, segmentation %s, %s; dynamic = within %d px of the exact mask)\n", a.input.c_str(),
-              to_string(dataset->sensor()), a.oracle ? "on (exact masks)" : "off",
+              to_string(dataset->sensor()),
+              a.oracle_instances ? "on (exact instances)" : a.oracle ? "on (exact masks)" : "off",
               a.deterministic ? "deterministic" : "concurrent local mapping", a.margin);
   nlohmann::json out;
   out["input"] = a.input;
@@ -437,6 +515,11 @@ int main(int argc, char** argv) {
   app.add_option("--input", a.input, "a `stillslam simulate` folder (masks/, groundtruth.txt)")->required();
   app.add_option("--groundtruth", a.groundtruth, "ground truth (default: INPUT/groundtruth.txt)");
   app.add_flag("--oracle-masks", a.oracle, "segmentation on with the exact masks (default: off)");
+  app.add_flag("--oracle-instances", a.oracle_instances,
+               "segmentation on with the folder's instances/, one detection per instance (default: off)");
+  app.add_option("--matches-csv", a.matches_csv, "write every local-map match of every frame here (CSV)");
+  app.add_option("--twin", a.twin, "with --matches-csv: the same path without movers (its depth column)");
+  app.add_option("--depth-factor", a.depth_factor, "the twin's depth units per metre")->capture_default_str();
   app.add_flag("--deterministic", a.deterministic, "synchronous local mapping");
   app.add_option("--max-frames", a.max_frames, "stop after N frames (0: all)")->capture_default_str();
   app.add_option("--window", a.window, "frames per drift window")->capture_default_str()->check(CLI::PositiveNumber);

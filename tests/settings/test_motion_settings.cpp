@@ -121,10 +121,13 @@ TEST(MotionSettings, SparseViewKeysBind) {
   EXPECT_TRUE(defaults.motion.sparse_view.keyframes);
   EXPECT_FALSE(defaults.motion.sparse_view.prior);
   EXPECT_EQ(defaults.motion.sparse_view.smooth_frames, 0);
+  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.filter_gain, 0.0);
+  EXPECT_EQ(defaults.motion.sparse_view.filter_frames, 5);
   const Settings s = load_settings(dir.write(
       "b.yaml", kBase + "Motion.sparseView: 1\nMotion.sparseViewMaskedShare: 0.6\nMotion.sparseViewInliers: 80\n"
                         "Motion.sparseViewTrackedWeight: 0.3\nMotion.sparseViewKeyframes: 0\n"
-                        "Motion.sparseViewPrior: 1\nMotion.sparseViewSmoothFrames: 3\n"));
+                        "Motion.sparseViewPrior: 1\nMotion.sparseViewSmoothFrames: 3\n"
+                        "Motion.sparseViewFilterGain: 0.4\nMotion.sparseViewFilterFrames: 8\n"));
   EXPECT_TRUE(s.motion.sparse_view.enabled);
   EXPECT_DOUBLE_EQ(s.motion.sparse_view.masked_share, 0.6);
   EXPECT_EQ(s.motion.sparse_view.inliers, 80);
@@ -132,7 +135,11 @@ TEST(MotionSettings, SparseViewKeysBind) {
   EXPECT_FALSE(s.motion.sparse_view.keyframes);
   EXPECT_TRUE(s.motion.sparse_view.prior);
   EXPECT_EQ(s.motion.sparse_view.smooth_frames, 3);
-  for (const std::string bad : {"Motion.sparseViewTrackedWeight: 2\n", "Motion.sparseViewKeyframes: 2\n",
+  EXPECT_DOUBLE_EQ(s.motion.sparse_view.filter_gain, 0.4);
+  EXPECT_EQ(s.motion.sparse_view.filter_frames, 8);
+  for (const std::string bad : {"Motion.sparseViewFilterGain: -0.1\n", "Motion.sparseViewFilterGain: 1.5\n",
+                                "Motion.sparseViewFilterFrames: 0\n", "Motion.sparseViewFilterFrames: 101\n",
+                                "Motion.sparseViewTrackedWeight: 2\n", "Motion.sparseViewKeyframes: 2\n",
                                 "Motion.sparseViewPrior: -1\n", "Motion.sparseViewSmoothFrames: -1\n",
                                 "Motion.sparseViewSmoothFrames: 101\n"}) {
     const std::string e = test::settings_error(dir, kBase + bad);

@@ -247,5 +247,63 @@ TEST(SparseView, SmoothingTheFlaggedCentresTakesOutTheirJitter) {
   EXPECT_EQ(off, given);
 }
 
+// SparseViewOptions::filter_gain on a trajectory: the same path with the
+// flagged frames jittering by +-10 mm across it. The filter (gain 0.5) starts
+// from the motion over the 5 frames before the run and leaves a fraction of
+// the jitter; unflagged frames, and a run's first frame of another map, keep
+// their centres.
+TEST(SparseView, TheCentreFilterTakesOutMostOfTheJitter) {
+  std::vector<Eigen::Vector3d> truth, centres;
+  std::vector<bool> sparse;
+  std::vector<std::uint64_t> maps;
+  for (int i = 0; i < 40; ++i) {
+    truth.emplace_back(0.01 * i, 0, 0);
+    const bool flagged = (i >= 10 && i < 30) || i == 35;
+    const double jitter = flagged ? (i % 2 == 0 ? 0.01 : -0.01) : 0.0;
+    centres.push_back(truth.back() + Eigen::Vector3d(0, jitter, 0));
+    sparse.push_back(flagged);
+    maps.push_back(i < 35 ? 1 : 2);
+  }
+  const std::vector<Eigen::Vector3d> given = centres;
+  filter_sparse_centres(centres, sparse, maps, 0.5, 5);
+  double sum = 0;
+  for (int i = 0; i < 40; ++i) {
+    if (!sparse[i] || i == 35) {
+      EXPECT_EQ(centres[i], given[i]) << i;  // map 2's first frame has no earlier centre of its map
+      continue;
+    }
+    EXPECT_LT(std::abs(centres[i].x() - truth[i].x()), 1e-9) << i;  // no jitter along the path: no lag
+    sum += (centres[i] - truth[i]).squaredNorm();
+  }
+  const double rms = std::sqrt(sum / 20);
+  EXPECT_LT(rms, 0.006) << rms;  // of the 10 mm
+  EXPECT_GT(rms, 0.001) << rms;  // a causal filter: some is left
+  std::vector<Eigen::Vector3d> off = given;
+  filter_sparse_centres(off, sparse, maps, 0, 5);
+  EXPECT_EQ(off, given);
+}
+
+// SparseViewOptions::filter_gain online: after 8 frames 10 mm apart along x,
+// a sparse view lies 6 mm ahead of the path. The filter (gain 0.5) predicts
+// the path from the motion over the 5 frames before, and holds the tracked
+// centre half way, 3 mm ahead; without it the pose is as tracked.
+TEST(SparseView, TheFilterHoldsASparseViewsCentreHalfWayToItsPrediction) {
+  const auto ahead = [](double gain) {
+    TrackerOptions o = SparseTracker::options(1.0, 0);  // no blend
+    o.sparse_view.filter_gain = gain;
+    SparseTracker t(o);
+    t.start(8);
+    const double path = 0.01 * static_cast<double>(t.id);
+    Frame f = t.scene.make_frame(t.id, test::pose_at(path + 0.006));
+    f.set_dynamic_mask(mask_of_left_part(0.6));
+    const TrackingResult r = t.tracker.track(f);
+    EXPECT_EQ(r.state, TrackingState::Ok) << r.reason;
+    EXPECT_EQ(r.sparse_view, SparseView::Tracked);
+    return centre(f).x() - path;
+  };
+  EXPECT_NEAR(ahead(0), 0.006, 1e-4);
+  EXPECT_NEAR(ahead(0.5), 0.003, 3e-4);
+}
+
 }  // namespace
 }  // namespace stillslam

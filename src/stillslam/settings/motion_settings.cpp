@@ -26,6 +26,8 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");
   keys.flag("sparseViewKeyframes", options.sparse_view.keyframes, "SparseViewOptions.keyframes");
   keys.flag("sparseViewPrior", options.sparse_view.prior, "SparseViewOptions.prior");
+  keys.number("sparseViewFilterGain", options.sparse_view.filter_gain, "SparseViewOptions.filter_gain", {0, 1});
+  keys.integer("sparseViewFilterFrames", options.sparse_view.filter_frames, "SparseViewOptions.filter_frames", {1, 100});
   keys.integer("sparseViewSmoothFrames", options.sparse_view.smooth_frames, "SparseViewOptions.smooth_frames", {0, 100});
   keys.number("sparseViewMaskedShare", options.sparse_view.masked_share, "SparseViewOptions.masked_share", {0, 1});
   keys.integer("sparseViewInliers", options.sparse_view.inliers, "SparseViewOptions.inliers", {0, 100000});

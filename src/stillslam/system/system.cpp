@@ -213,6 +213,8 @@ void System::build_pipeline(const Settings& settings) {
   tracking.probe = options_.tracking_probe;
   tracking.sparse_view = settings.motion.sparse_view;
   sparse_view_smooth_frames_ = settings.motion.sparse_view.enabled ? settings.motion.sparse_view.smooth_frames : 0;
+  sparse_view_filter_gain_ = settings.motion.sparse_view.enabled ? settings.motion.sparse_view.filter_gain : 0;
+  sparse_view_filter_frames_ = settings.motion.sparse_view.filter_frames;
   tracking.static_evidence.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_pose;
   // Held keyframes are checked later instead of deferred.
   if (async_masks_ && !keyframe_hold_ && !provisional_points_) {
@@ -702,6 +704,16 @@ std::vector<MapPose> System::trajectory_with_maps() const {
     if (!done[i]) continue;
     kept.push_back(out[i]);
     sparse.push_back(records_[i].sparse_view);
+  }
+  if (sparse_view_filter_gain_ > 0) {
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<std::uint64_t> maps;
+    for (const MapPose& p : kept) {
+      centres.push_back(p.pose.T_world_cam.translation());
+      maps.push_back(p.map_id);
+    }
+    filter_sparse_centres(centres, sparse, maps, sparse_view_filter_gain_, sparse_view_filter_frames_);
+    for (std::size_t i = 0; i < kept.size(); ++i) kept[i].pose.T_world_cam.translation() = centres[i];
   }
   if (sparse_view_smooth_frames_ > 0) {
     std::vector<Eigen::Vector3d> centres;

@@ -262,6 +262,8 @@ class System {
   // index): those a start from an earlier frame poses.
   std::vector<std::pair<std::uint64_t, std::size_t>> start_inputs_;
   int sparse_view_smooth_frames_ = 0;  // Motion.sparseViewSmoothFrames (with Motion.sparseView)
+  double sparse_view_filter_gain_ = 0;  // Motion.sparseViewFilterGain (with Motion.sparseView)
+  int sparse_view_filter_frames_ = 5;   // Motion.sparseViewFilterFrames
   std::uint64_t next_frame_id_ = 0;
   std::optional<Eigen::Isometry3d> last_T_world_cam_;
   int new_map_after_lost_frames_ = 0;  // 0: never

@@ -1,5 +1,7 @@
 #include "stillslam/tracking/sparse_view.h"
 
+#include <algorithm>
+
 #include "stillslam/core/option_check.h"
 #include "stillslam/segmentation/dynamic_mask.h"
 
@@ -11,6 +13,8 @@ void SparseViewOptions::check() const {
   in_range("SparseViewOptions.inliers", inliers, 0, 100000);
   in_range("SparseViewOptions.tracked_weight", tracked_weight, 0.0, 1.0);
   in_range("SparseViewOptions.smooth_frames", smooth_frames, 0, 100);
+  in_range("SparseViewOptions.filter_gain", filter_gain, 0.0, 1.0);
+  in_range("SparseViewOptions.filter_frames", filter_frames, 1, 100);
 }
 
 double masked_share(const Frame& frame) { return mask_coverage(frame.dynamic_mask()); }
@@ -45,6 +49,40 @@ void smooth_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vec
       ++count;
     }
     centres[static_cast<std::size_t>(i)] = sum / count;
+  }
+}
+
+CentreFilter::CentreFilter(double gain) : alpha_(gain), beta_(gain * gain / (2.0 - gain)) {}
+
+Eigen::Vector3d CentreFilter::step(const Eigen::Vector3d& last, const Eigen::Vector3d& start_velocity,
+                                   const Eigen::Vector3d& tracked, int steps) {
+  if (!velocity_) velocity_ = start_velocity;
+  const double n = std::max(1, steps);
+  const Eigen::Vector3d predicted = last + n * *velocity_;
+  const Eigen::Vector3d innovation = tracked - predicted;
+  *velocity_ += beta_ / n * innovation;
+  return predicted + alpha_ * innovation;
+}
+
+void filter_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
+                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames) {
+  if (gain <= 0) return;
+  CentreFilter filter(gain);
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    if (!sparse[i] || i == 0 || group[i - 1] != group[i]) {
+      filter.stop();
+      continue;
+    }
+    // The run's start: the mean motion over up to velocity_frames centres before it.
+    std::size_t first = i - 1;
+    while (first > 0 && i - 1 - (first - 1) <= static_cast<std::size_t>(velocity_frames) &&
+           group[first - 1] == group[i]) {
+      --first;
+    }
+    const Eigen::Vector3d start_velocity =
+        first < i - 1 ? Eigen::Vector3d((centres[i - 1] - centres[first]) / static_cast<double>(i - 1 - first))
+                      : Eigen::Vector3d::Zero();
+    centres[i] = filter.step(centres[i - 1], start_velocity, centres[i], 1);
   }
 }
 

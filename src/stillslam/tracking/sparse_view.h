@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,17 @@ struct SparseViewOptions {
   // many frames of it (its own map's, as read); its rotation is kept. The
   // tracked poses themselves are not changed. 0: off.
   int smooth_frames = 0;
+  // > 0: in a run of sparse views each camera centre is an alpha-beta filter
+  // of the tracked centres with this gain (alpha; beta = alpha^2 / (2 - alpha),
+  // critically damped), started at the run's first view from the motion per
+  // frame averaged over the `filter_frames` frames before it. Online: the
+  // tracked pose is re-estimated from its inliers with its centre held at the
+  // filtered one (the rotation follows the points); in the trajectory read at
+  // the end the same filter runs over the refined centres. Far points alone
+  // fix a centre only weakly (a crowd hides the near scene): each sparse
+  // view's centre jitters by millimetres. 0: off.
+  double filter_gain = 0;
+  int filter_frames = 5;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -59,6 +71,33 @@ bool is_sparse_view(const Frame& frame, const SparseViewOptions& options);
 // each computed from the centres as given.
 void smooth_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
                            const std::vector<std::uint64_t>& group, int half_window);
+
+// SparseViewOptions::filter_gain over one run of sparse views.
+class CentreFilter {
+ public:
+  explicit CentreFilter(double gain = 0);
+  bool running() const { return velocity_.has_value(); }
+  // The filtered centre of a sparse view `steps` frames after the last one,
+  // from its tracked centre; `last` is the last frame's (filtered) centre;
+  // `start_velocity` the motion per frame the run starts from (used when the
+  // filter is not running yet).
+  Eigen::Vector3d step(const Eigen::Vector3d& last, const Eigen::Vector3d& start_velocity,
+                       const Eigen::Vector3d& tracked, int steps);
+  // A view that is not sparse ends the run.
+  void stop() { velocity_.reset(); }
+
+ private:
+  double alpha_ = 0, beta_ = 0;
+  std::optional<Eigen::Vector3d> velocity_;
+};
+
+// SparseViewOptions::filter_gain on a trajectory: the centres (one per
+// frame, in order) of the frames flagged in `sparse` become the filter's,
+// each run started from the mean motion over the `velocity_frames` centres
+// before it that share its `group` (map id). A flagged frame with no earlier
+// centre of its group keeps its centre.
+void filter_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
+                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames);
 
 // `tracked_weight` of the way from `predicted` to `tracked` (rotation by
 // slerp, camera centre linearly); both are T_cam_world.

@@ -34,7 +34,7 @@ Eigen::Isometry3d per_frame_motion(const Eigen::Isometry3d& motion, int frames) 
 }  // namespace
 
 Tracker::Tracker(Map& map, TrackerOptions options, LocalMappingLink link)
-    : map_(&map), options_(options), link_(std::move(link)) {
+    : map_(&map), options_(options), link_(std::move(link)), centre_filter_(options_.sparse_view.filter_gain) {
   options_.check();
   keyframe_budget_ = KeyFrameBudget(options_.keyframe_budget);
 }
@@ -57,6 +57,8 @@ void Tracker::start_new_map(Map& map) {
   start_confirmed_.clear();
   start_matched_.clear();
   last_frame_left_out_.clear();
+  past_poses_.clear();
+  centre_filter_.stop();
   start_confirmations_ = 0;
   start_frames_rejected_ = 0;
   start_gap_frames_ = 1;
@@ -127,6 +129,7 @@ TrackingResult Tracker::track(Frame& frame) {
       velocity_ = per_frame_motion(frame.T_cam_world() * last_frame_.T_cam_world().inverse(), frames_since_last);
     } else {
       velocity_.reset();
+      past_poses_.clear();
     }
     // The keypoints whose match this frame rejected, in the start's window:
     // neither keyframe nor visual-odometry points.
@@ -155,6 +158,12 @@ TrackingResult Tracker::track(Frame& frame) {
     if (!frame.reference_keyframe()) frame.set_reference_keyframe(reference_keyframe_);
     reference_keyframe_ = frame.reference_keyframe();
     T_last_ref_ = frame.T_cam_world() * reference_keyframe_->T_world_cam();
+    if (options_.sparse_view.filter_gain > 0) {
+      past_poses_.push_back({frame.id(), reference_keyframe_, T_last_ref_});
+      while (past_poses_.size() > static_cast<std::size_t>(options_.sparse_view.filter_frames) + 1) {
+        past_poses_.pop_front();
+      }
+    }
     result.reference = reference_keyframe_;
     result.T_cam_reference = T_last_ref_;
     last_frame_ = frame;
@@ -162,6 +171,8 @@ TrackingResult Tracker::track(Frame& frame) {
   } else {
     state_ = TrackingState::Lost;
     velocity_.reset();
+    past_poses_.clear();
+    centre_filter_.stop();
     if (result.reason.empty()) result.reason = "lost";
   }
   if (!start_note.empty()) result.reason = start_note + "; " + result.reason;
@@ -180,11 +191,16 @@ bool Tracker::refuse_sparse_start(const Frame& frame, TrackingResult& result) {
 }
 
 bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok) {
-  if (!is_sparse_view(frame, options_.sparse_view)) return ok;
+  if (!is_sparse_view(frame, options_.sparse_view)) {
+    centre_filter_.stop();
+    return ok;
+  }
   if (ok && result.inliers >= options_.sparse_view.inliers) {
     result.sparse_view = SparseView::Tracked;
+    if (options_.sparse_view.filter_gain > 0) filter_sparse_centre(frame);
     return true;
   }
+  centre_filter_.stop();
   // Only while tracking: after a loss there is no velocity to predict with.
   if (state_ != TrackingState::Ok || !velocity_ || !last_frame_.has_pose()) return ok;
   const Eigen::Isometry3d predicted = *velocity_ * last_frame_.T_cam_world();
@@ -199,6 +215,39 @@ bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok
   result.sparse_view = SparseView::Predicted;
   result.reason = "sparse view: constant-velocity prediction";
   return true;
+}
+
+void Tracker::filter_sparse_centre(Frame& frame) {
+  // Only while tracking, from the last frame's pose through its reference keyframe.
+  if (state_ != TrackingState::Ok || !last_frame_.has_pose() || past_poses_.empty() ||
+      past_poses_.back().frame_id >= frame.id()) {
+    centre_filter_.stop();
+    return;
+  }
+  const auto centre_of = [](const PastPose& p) {
+    return Eigen::Vector3d((p.T_cam_reference * p.reference->T_cam_world()).inverse().translation());
+  };
+  const PastPose& last = past_poses_.back();
+  const PastPose& first = past_poses_.front();
+  Eigen::Vector3d start_velocity = Eigen::Vector3d::Zero();
+  if (last.frame_id > first.frame_id) {
+    start_velocity = (centre_of(last) - centre_of(first)) / static_cast<double>(last.frame_id - first.frame_id);
+  }
+  const Eigen::Vector3d centre = centre_filter_.step(centre_of(last), start_velocity, frame.camera_center(),
+                                                     static_cast<int>(frame.id() - last.frame_id));
+  // The pose again from the inliers, its centre held at the filtered one.
+  std::vector<PoseObservation> observations;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
+  }
+  PosePrior prior;
+  prior.T_cam_world = frame.T_cam_world();
+  prior.T_cam_world.translation() = -(prior.T_cam_world.linear() * centre);
+  prior.sigma_translation = 1e-4;
+  prior.sigma_rotation = 1.0;  // the rotation follows the points
+  const PoseOptimizationResult held =
+      optimize_pose(frame.setup().camera, prior.T_cam_world, observations, options_.pose, &prior);
+  frame.set_pose(held.T_cam_world);
 }
 
 Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {

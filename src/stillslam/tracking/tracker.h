@@ -5,6 +5,7 @@
 // and creation. On loss it first tries relocalization (place recognition,
 // wired by System through the link), then searches the last keyframe's local
 // map with a wide window.
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "stillslam/map/map.h"
 #include "stillslam/tracking/keyframe_budget.h"
 #include "stillslam/tracking/motion_prior.h"
+#include "stillslam/tracking/sparse_view.h"
 #include "stillslam/tracking/start_evidence.h"
 #include "stillslam/tracking/tracker_options.h"
 #include "stillslam/tracking/tracking_state.h"
@@ -134,6 +136,9 @@ class Tracker {
   // The motion-model and local-map pose stages: the evidence pose with this
   // frame's motion prior (tracking/motion_prior.h), if any.
   int refine_stage_pose(Frame& frame, TrackingResult& result);
+  // SparseViewOptions::filter_gain on a tracked sparse view: its centre
+  // filtered, its pose re-estimated from its inliers with the centre held.
+  void filter_sparse_centre(Frame& frame);
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   // In the start's trust window (start_evidence_), new depth points only where
   // the match was not rejected and the previous frame saw the point in place.
@@ -149,6 +154,16 @@ class Tracker {
   Eigen::Isometry3d T_last_ref_ = Eigen::Isometry3d::Identity();
   std::optional<Eigen::Isometry3d> velocity_;  // T_cur_last of the last step
   std::optional<PosePrior> motion_prior_;      // this frame's, set by the motion-model stage
+  // The last frames' poses through their reference keyframes, oldest first
+  // (SparseViewOptions::filter_frames + 1 of them at most, with the filter
+  // on); cleared with the velocity.
+  struct PastPose {
+    std::uint64_t frame_id = 0;
+    KeyFramePtr reference;
+    Eigen::Isometry3d T_cam_reference = Eigen::Isometry3d::Identity();
+  };
+  std::deque<PastPose> past_poses_;
+  CentreFilter centre_filter_;  // SparseViewOptions::filter_gain
   KeyFramePtr reference_keyframe_;
   KeyFramePtr last_keyframe_;
   std::uint64_t last_keyframe_frame_id_ = 0;
