@@ -84,6 +84,14 @@ TEST(MotionSettings, KeptPointSigmaBinds) {
   EXPECT_NE(e.find("Motion.keptPointSigma"), std::string::npos) << e;
 }
 
+TEST(MotionSettings, KeptFeaturesBinds) {
+  TempDir dir;
+  EXPECT_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_features, 0);
+  EXPECT_EQ(load_settings(dir.write("b.yaml", kBase + "Motion.keptFeatures: 100\n")).motion.kept_features, 100);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptFeatures: -1\n");
+  EXPECT_NE(e.find("Motion.keptFeatures"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, KeptPointsOutOfBABinds) {
   TempDir dir;
   EXPECT_FALSE(load_settings(dir.write("a.yaml", kBase)).motion.kept_points_out_of_ba);
