@@ -111,6 +111,49 @@ TEST(LocalBundleAdjustment, ReducesInjectedNoiseAndRemovesOutliers) {
   EXPECT_EQ(kfs[4]->map_point(bad_slot), nullptr);
 }
 
+TEST(LocalBundleAdjustment, PointsOnAKeptPersonStayOutOfTheWindowWhenAsked) {
+  test::SyntheticScene scene;
+  test::MapBuilder builder(scene);
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 4; ++k) kfs.push_back(builder.add_keyframe(test::pose_at(0.1 * k, 0.02 * k, 2.0 * k)));
+  // Every third point flagged as seen on a person kept as static, and moved
+  // 3 cm from where its observations put it (the person swayed).
+  std::vector<MapPointPtr> flagged;
+  std::vector<Eigen::Vector3d> moved;
+  std::size_t flagged_observations = 0, all_observations = 0;
+  for (const auto& [id, mp] : builder.points()) {
+    all_observations += mp->observations().size();
+    if (id % 3 != 0) continue;
+    mp->mark_on_dynamic_instance();
+    mp->set_position(mp->position() + Eigen::Vector3d(0.03, -0.02, 0.01));
+    flagged.push_back(mp);
+    moved.push_back(mp->position());
+    flagged_observations += mp->observations().size();
+  }
+  ASSERT_GT(flagged.size(), 50u);
+
+  const LocalBundleAdjustmentProblem with = gather_local_window(*kfs[3]);
+  EXPECT_EQ(with.points.size(), builder.map().num_map_points());
+  LocalWindowOptions out;
+  out.leave_out_kept_points = true;
+  const LocalBundleAdjustmentProblem without = gather_local_window(*kfs[3], out);
+  EXPECT_EQ(without.points.size(), builder.map().num_map_points() - flagged.size());
+  EXPECT_EQ(without.ba_observations.size(), all_observations - flagged_observations);
+  for (const auto& mp : without.points) EXPECT_FALSE(mp->on_dynamic_instance());
+
+  // Left out, the flagged points keep their (moved) places; in the window, BA
+  // pulls them back toward where their observations agree.
+  const auto options = LocalMapperOptions::default_bundle_adjustment();
+  apply_local_window(without, solve_local_window(kfs[3]->setup().camera, without, options));
+  for (std::size_t i = 0; i < flagged.size(); ++i) EXPECT_EQ(flagged[i]->position(), moved[i]);
+  apply_local_window(with, solve_local_window(kfs[3]->setup().camera, with, options));
+  int pulled = 0;
+  for (std::size_t i = 0; i < flagged.size(); ++i) {
+    if (!flagged[i]->is_bad() && (flagged[i]->position() - moved[i]).norm() > 0.01) ++pulled;
+  }
+  EXPECT_GT(pulled, static_cast<int>(flagged.size()) / 2);
+}
+
 TEST(PointCulling, RecentPointsNeedObservationsAndFoundRatio) {
   test::SyntheticScene scene;
   test::MapBuilder builder(scene);

@@ -76,6 +76,30 @@ TEST(MotionSettings, KeptPointsOutOfPoseBinds) {
   EXPECT_NE(e.find("Motion.keptPointsOutOfPose"), std::string::npos) << e;
 }
 
+TEST(MotionSettings, KeptPointSigmaBinds) {
+  TempDir dir;
+  EXPECT_DOUBLE_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_point_sigma, 1);
+  EXPECT_DOUBLE_EQ(load_settings(dir.write("b.yaml", kBase + "Motion.keptPointSigma: 3\n")).motion.kept_point_sigma, 3);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptPointSigma: 0.5\n");
+  EXPECT_NE(e.find("Motion.keptPointSigma"), std::string::npos) << e;
+}
+
+TEST(MotionSettings, KeptFeaturesBinds) {
+  TempDir dir;
+  EXPECT_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_features, 0);
+  EXPECT_EQ(load_settings(dir.write("b.yaml", kBase + "Motion.keptFeatures: 100\n")).motion.kept_features, 100);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptFeatures: -1\n");
+  EXPECT_NE(e.find("Motion.keptFeatures"), std::string::npos) << e;
+}
+
+TEST(MotionSettings, KeptPointsOutOfBABinds) {
+  TempDir dir;
+  EXPECT_FALSE(load_settings(dir.write("a.yaml", kBase)).motion.kept_points_out_of_ba);
+  EXPECT_TRUE(load_settings(dir.write("b.yaml", kBase + "Motion.keptPointsOutOfBA: 1\n")).motion.kept_points_out_of_ba);
+  const std::string e = test::settings_error(dir, kBase + "Motion.keptPointsOutOfBA: 2\n");
+  EXPECT_NE(e.find("Motion.keptPointsOutOfBA"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, FreeSpaceShareBinds) {
   TempDir dir;
   EXPECT_DOUBLE_EQ(load_settings(dir.write("a.yaml", kBase)).motion.free_space_share, 0);

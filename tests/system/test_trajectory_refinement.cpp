@@ -125,6 +125,15 @@ TEST(TrajectoryRefinement, LeavesOutPointsOnAKeptPersonWhileEnoughOthersRemain) 
               translation_error(*without, truth));
   EXPECT_GT(translation_error(*with_person, truth), 5e-4);
   EXPECT_LT(translation_error(*without, truth), 1e-6);
+  // Kept with 5x their sigma: a fraction of their pull.
+  options.leave_out_kept_points = false;
+  options.kept_point_sigma = 5;
+  const auto weighted = refine_frame_pose(*scene.setup(), shifted(truth, 0.01), obs, options);
+  ASSERT_TRUE(weighted.has_value());
+  std::printf("error with them at 5x sigma %.6f m\n", translation_error(*weighted, truth));
+  EXPECT_LT(translation_error(*weighted, truth), translation_error(*with_person, truth) / 3);
+  EXPECT_GT(translation_error(*weighted, truth), translation_error(*without, truth));
+  options.kept_point_sigma = 1;
 
   // Only 20 points off the person survive (fewer than min_inliers 30): all points, as without the rule.
   int others = 0;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 
 #include <opencv2/imgproc.hpp>
@@ -99,6 +100,7 @@ struct StageRun {
   // flagged as seen on a person (on the person's region, elsewhere), and culled.
   std::vector<int> flagged_on_person, flagged_elsewhere, culled;
   std::vector<int> watched_features;  // the stage's own features on the unmasked box
+  std::vector<int> frame_features;    // the frame's keypoints
   // With persistent points: the most frames since a point was first flagged
   // that it was matched on the person again and not culled.
   int max_flagged_age = 0;
@@ -134,6 +136,7 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
     FrameBuildStats stats;
     Frame frame = builder.build(in, static_cast<std::uint64_t>(k), &stats);
     out.watched_features.push_back(stage.watched_features());
+    out.frame_features.push_back(static_cast<int>(frame.size()));
     // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
     Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
     T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
@@ -232,6 +235,37 @@ TEST(MotionStage, PointsOnAStillPersonLiveKeptPointFramesOnly) {
   EXPECT_GT(culled, 50);
   // The person stays kept: its features still track.
   for (int k = first_static; k < 40; ++k) EXPECT_GT(limited.stats[k].features_kept_by_motion, 20) << k;
+}
+
+// Motion.keptFeatures: the kept person's features come from a budget of
+// their own, and the frame's budget goes to the rest of the view as while the
+// person was masked; without it the person takes a share of the frame's.
+TEST(MotionStage, AKeptPersonCanGetFeaturesOfItsOwnBudget) {
+  MotionOptions o;
+  o.span = 6;
+  o.person_frames = 10;
+  const int first_static = o.span + o.person_frames, frames = 24, budget = 400;
+  const StageRun shared = run_scene(frames, false, o, -1, -1, budget);
+  o.kept_features = 16;
+  const StageRun own = run_scene(frames, false, o, -1, -1, budget);
+  for (int k = 0; k < first_static; ++k) EXPECT_EQ(own.frame_features[k], shared.frame_features[k]) << k;
+  int shared_person = 0, gained = 0;
+  for (int k = first_static; k < frames; ++k) {
+    SCOPED_TRACE(k);
+    const int own_person = own.stats[k].features_kept_by_motion;
+    EXPECT_GT(own_person, 4);
+    EXPECT_LE(own_person, 16 * 3 / 2);  // extract_in_boxes may exceed its budget by half
+    EXPECT_EQ(own.flagged_on_person[k], own_person);
+    EXPECT_EQ(own.stats[k].features_removed_by_class, 0);  // nothing masked: the person's corners are not removed
+    const int own_rest = own.frame_features[k] - own_person;
+    const int shared_rest = shared.frame_features[k] - shared.stats[k].features_kept_by_motion;
+    EXPECT_GT(own_rest, shared_rest);
+    shared_person += shared.stats[k].features_kept_by_motion;
+    gained += own_rest - shared_rest;
+  }
+  std::printf("kept person's features in the frame's budget: %d over %d frames; the rest of the view gains %d with "
+              "its own budget\n", shared_person, frames - first_static, gained);
+  EXPECT_GT(gained, shared_person / 2);
 }
 
 // The person goes undetected for 5 frames (its id is dropped after 3) and

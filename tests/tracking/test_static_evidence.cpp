@@ -199,6 +199,15 @@ TEST(StaticEvidence, PointsOnAKeptPersonDoNotMoveThePose) {
   options.enabled = false;
   options.leave_out_kept_points = true;
   EXPECT_LT(error_of(frame, options, &in_on), 1e-4);
+  // Kept in the pose with 5x their sigma: a fraction of the pull.
+  options.enabled = true;
+  options.leave_out_kept_points = false;
+  options.kept_point_sigma = 5;
+  int in_weighted = 0;
+  const double weighted = error_of(frame, options, &in_weighted);
+  std::printf("pose error %.6f m with the kept person's matches at 5x sigma (%d inliers)\n", weighted, in_weighted);
+  EXPECT_LT(weighted, off / 3);
+  EXPECT_GT(weighted, on);
 
   // Only 30 background matches (under min_points 40): all matches move the pose.
   Frame sparse = frame;

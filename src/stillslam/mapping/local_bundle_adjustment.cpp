@@ -36,6 +36,7 @@ LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf, const LocalWindow
   for (std::size_t k = 0; k < num_local && !full; ++k) {
     for (const MapPointPtr& mp : problem.keyframes[k]->map_points()) {
       if (!mp || mp->is_bad() || mp->is_provisional() || point_index.count(mp.get())) continue;
+      if (options.leave_out_kept_points && mp->on_dynamic_instance()) continue;
       const std::size_t n_obs = mp->observations().size();
       if (!within(problem.points.size(), options.max_points) ||
           (options.max_observations > 0 &&

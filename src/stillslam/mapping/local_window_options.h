@@ -17,6 +17,11 @@ struct LocalWindowOptions {
   // Observations (each point counted with all its observations, so the
   // window never exceeds it).
   int max_observations = 20000;
+  // Points flagged as seen on a person kept as static
+  // (MapPoint::on_dynamic_instance) stay out of the window: they neither
+  // move nor pull its keyframes (System sets it from Motion.enabled and
+  // Motion.keptPointsOutOfBA; not a LocalMapping.* key).
+  bool leave_out_kept_points = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

@@ -17,6 +17,9 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.number("objectMovingFloorPx", options.object_moving_floor_px, "MotionOptions.object_moving_floor_px", {1.5, 100});
   keys.integer("keptPointFrames", options.kept_point_frames, "MotionOptions.kept_point_frames", {0, 100000});
   keys.flag("keptPointsOutOfPose", options.kept_points_out_of_pose, "MotionOptions.kept_points_out_of_pose");
+  keys.number("keptPointSigma", options.kept_point_sigma, "MotionOptions.kept_point_sigma", {1, 100});
+  keys.integer("keptFeatures", options.kept_features, "MotionOptions.kept_features", {0, 10000});
+  keys.flag("keptPointsOutOfBA", options.kept_points_out_of_ba, "MotionOptions.kept_points_out_of_ba");
   keys.number("freeSpaceShare", options.free_space_share, "MotionOptions.free_space_share", {0, 1});
   keys.integer("freeSpaceFrames", options.free_space_frames, "MotionOptions.free_space_frames", {0, 100});
   keys.flag("freeSpaceVacated", options.free_space_vacated, "MotionOptions.free_space_vacated");

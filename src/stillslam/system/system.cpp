@@ -150,6 +150,7 @@ void System::build_pipeline(const Settings& settings) {
                                                   settings.segmentation.mask_dilation, settings.motion);
     builder_->set_motion_stage(motion_stage_.get());
     options_.trajectory_refinement.leave_out_kept_points = settings.motion.kept_points_out_of_pose;
+    options_.trajectory_refinement.kept_point_sigma = settings.motion.kept_point_sigma;
   }
 
   Map& map = atlas_->active_map();
@@ -169,6 +170,7 @@ void System::build_pipeline(const Settings& settings) {
   // keyframe goes on to loop closing and to merge detection.
   LocalMapperOptions mapping = settings.local_mapping;
   mapping.threaded = mode == WorkerMode::Threaded;
+  mapping.window.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_ba;
   if (options_.deterministic) {
     mapping.bundle_adjustment.num_threads = 1;
     mapping.bundle_adjustment.max_seconds_per_pass = 0;  // a wall-clock budget would not repeat
@@ -216,6 +218,7 @@ void System::build_pipeline(const Settings& settings) {
   sparse_view_filter_gain_ = settings.motion.sparse_view.enabled ? settings.motion.sparse_view.filter_gain : 0;
   sparse_view_filter_frames_ = settings.motion.sparse_view.filter_frames;
   tracking.static_evidence.leave_out_kept_points = motion_stage_ && settings.motion.kept_points_out_of_pose;
+  if (motion_stage_) tracking.static_evidence.kept_point_sigma = settings.motion.kept_point_sigma;
   // Held keyframes are checked later instead of deferred.
   if (async_masks_ && !keyframe_hold_ && !provisional_points_) {
     tracking.max_keyframe_mask_age = settings.segmentation.keyframe_mask_age;

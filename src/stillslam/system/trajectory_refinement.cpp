@@ -40,6 +40,7 @@ std::optional<Eigen::Isometry3d> refine_frame_pose(const CameraSetup& setup, con
     obs.pixel = Eigen::Vector2d(o.x, o.y);
     obs.u_right = o.u_right;
     obs.inv_sigma2 = setup.pyramid.inv_sigma2[o.level];
+    if (mp->on_dynamic_instance()) obs.inv_sigma2 /= options.kept_point_sigma * options.kept_point_sigma;
     (options.leave_out_kept_points && mp->on_dynamic_instance() ? kept : observations).push_back(obs);
   }
   // Too few without the kept person's points: all of them.

@@ -31,6 +31,9 @@ struct TrajectoryRefinementOptions {
   // least min_inliers other observations remain (System sets it from
   // Motion.enabled and Motion.keptPointsOutOfPose).
   bool leave_out_kept_points = false;
+  // Those points, when they take part, count with this many times their
+  // keypoint's sigma (System sets it from Motion.keptPointSigma).
+  double kept_point_sigma = 1;
   PoseOptimizerOptions pose;
 };
 

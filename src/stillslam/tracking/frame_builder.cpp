@@ -108,7 +108,21 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
   ThreadCpuStopwatch extraction_cpu;
   std::vector<cv::Point2f> removed_here;
   std::vector<cv::Point2f>* removed = dynamics ? &dynamics->removed_keypoints : motion_ ? &removed_here : nullptr;
-  OrbFeatures left = extractor_.extract(input.gray, exclude, stereo ? &left_pyramid : nullptr, removed);
+  // Motion.keptFeatures: the frame's features outside the kept people too, theirs from a budget of their own.
+  const cv::Mat1b own_extraction = motion_ ? motion_->extraction_mask() : cv::Mat1b();
+  OrbFeatures left = extractor_.extract(input.gray, own_extraction.empty() ? exclude : own_extraction,
+                                        stereo ? &left_pyramid : nullptr, removed);
+  if (!own_extraction.empty()) {
+    OrbFeatures kept = motion_->kept_features(input.gray);
+    if (!kept.empty()) {
+      left.keypoints.insert(left.keypoints.end(), kept.keypoints.begin(), kept.keypoints.end());
+      if (left.descriptors.empty()) {
+        left.descriptors = kept.descriptors;
+      } else {
+        cv::vconcat(left.descriptors, kept.descriptors, left.descriptors);
+      }
+    }
+  }
   st.extraction_cpu_ms = extraction_cpu.elapsed_ms();
   OrbFeatures right;
   if (stereo) right = right_future.get();

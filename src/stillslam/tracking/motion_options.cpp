@@ -12,6 +12,8 @@ void MotionOptions::check() const {
   in_range("MotionOptions.default_frames", default_frames, 1, 10000);
   in_half_open("MotionOptions.min_iou", min_iou, 0, 1);
   in_range("MotionOptions.kept_point_frames", kept_point_frames, 0, 100000);
+  in_range("MotionOptions.kept_point_sigma", kept_point_sigma, 1, 100);
+  in_range("MotionOptions.kept_features", kept_features, 0, 10000);
   in_range("MotionOptions.place_radius_m", place_radius_m, 0, 10);
   in_range("MotionOptions.place_memory_frames", place_memory_frames, 0, 100000);
   in_range("MotionOptions.object_moving_factor", object_moving_factor, 2, 100);

@@ -40,6 +40,21 @@ struct MotionOptions {
   // (tracking/static_evidence.h, system/trajectory_refinement.h).
   // Off: no gain measured yet (bench/README.md, issue #19 session 11).
   bool kept_points_out_of_pose = false;
+  // Map points flagged on a person kept as static take no part in local BA
+  // (mapping/local_bundle_adjustment.h): a swaying person moves neither the
+  // keyframes nor its own points there; tracking still matches them.
+  bool kept_points_out_of_ba = false;
+  // Matches on a person kept as static count in the frame's pose (tracking's
+  // pose stages and the final trajectory refinement) with this many times
+  // their keypoint's sigma: a larger value lets its sway pull the pose less
+  // without leaving its points out (1: as any other match).
+  double kept_point_sigma = 1;
+  // A person kept as static gets features of its own, up to this many
+  // (extracted on its pixels like the masked instances' features), while the
+  // frame's ORBextractor.nFeatures go to the rest of the view as if the
+  // person were masked: keeping a person then takes no features from the
+  // background. 0: the frame's features cover the kept person too.
+  int kept_features = 0;
   // An object (not of a dynamic class) without a verdict from its matched
   // features is also found moving from depth (tracking/free_space_check.h):
   // when at least this share of its sampled pixels, and 3x the share of the

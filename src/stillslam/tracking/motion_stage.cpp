@@ -91,6 +91,10 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
   boxes_.clear();
   watched_ = cv::Mat1b::zeros(size);
   watched_ids_.clear();
+  kept_pixels_ = cv::Mat1b();
+  kept_boxes_.clear();
+  extraction_mask_ = cv::Mat1b();
+  std::vector<cv::Mat1b> kept_instances;
   std::vector<cv::Mat1b> masks;
   std::vector<int> classes;
   for (const Detection& d : detections) {
@@ -124,6 +128,9 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
     if (masked(id)) {
       masked_instances.push_back(masks[n]);
       boxes_.push_back(cv::boundingRect(masks[n]));
+    } else if (options_.kept_features > 0 && dynamic_ids_.count(id)) {
+      kept_instances.push_back(masks[n]);
+      kept_boxes_.push_back(cv::boundingRect(masks[n]));
     } else if (options_.watch_objects && !dynamic_ids_.count(id)) {
       watched_.setTo(255, masks[n]);
       watched_ids_.insert(id);
@@ -132,7 +139,18 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
   }
   cv::Mat1b out = dynamic_mask(masked_instances, size, dilation_px_);
   if (!held.empty()) cv::bitwise_or(out, held, out);
+  if (!kept_instances.empty()) {
+    kept_pixels_ = cv::Mat1b::zeros(size);
+    for (const cv::Mat1b& m : kept_instances) kept_pixels_.setTo(255, m);
+    cv::bitwise_or(out, dynamic_mask(kept_instances, size, dilation_px_), extraction_mask_);
+  }
   return out;
+}
+
+OrbFeatures MotionStage::kept_features(const cv::Mat& gray) const {
+  if (!pending_ || kept_pixels_.empty()) return {};
+  return extract_in_boxes(orb_, options_.kept_features, gray, kept_pixels_,
+                          merge_instance_boxes(kept_boxes_, kBoxPad, gray.size()));
 }
 
 void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat1b& exclude,
@@ -171,7 +189,14 @@ void MotionStage::collect(const cv::Mat& gray, const cv::Mat& depth, const cv::M
   }
   for (std::uint32_t id : dynamic_ids_) stats.static_instances += check_.is_static(id);
   for (const auto& [id, category] : categories_) stats.moving_instances += !dynamic_ids_.count(id) && moving_.count(id);
+  const auto in_exclude = [&exclude](const cv::Point2f& p) {
+    if (exclude.empty()) return true;
+    return exclude(std::clamp(static_cast<int>(std::lround(p.y)), 0, exclude.rows - 1),
+                   std::clamp(static_cast<int>(std::lround(p.x)), 0, exclude.cols - 1)) != 0;
+  };
   for (const cv::Point2f& p : removed) {
+    // Left out of the frame's extraction only for a kept person's own budget.
+    if (!extraction_mask_.empty() && !in_exclude(p)) continue;
     const std::uint32_t id = label_at(p);
     if (id != 0 && !dynamic_ids_.count(id) && moving_.count(id)) {
       ++stats.features_removed_by_motion;

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "stillslam/features/orb_features.h"
 #include "stillslam/features/orb_options.h"
 #include "stillslam/geometry/pinhole_camera.h"
 #include "stillslam/map/frame.h"
@@ -72,6 +73,15 @@ class MotionStage {
   // culled, and those on a kept person past Motion.keptPointFrames. Lost
   // tracking drops all evidence. Returns the map points culled.
   int on_tracked(const Frame& frame, bool tracked);
+
+  // With Motion.keptFeatures, after mask_for() this frame: the mask the
+  // frame's own extraction leaves out (mask_for()'s and the people kept as
+  // static, dilated alike), so the frame's features go to the rest of the
+  // view; empty when no person is kept (extract outside mask_for()'s mask).
+  cv::Mat1b extraction_mask() const { return pending_ ? extraction_mask_ : cv::Mat1b(); }
+  // The kept people's own features (up to Motion.keptFeatures, on their
+  // pixels) for the frame; empty without extraction_mask().
+  OrbFeatures kept_features(const cv::Mat& gray) const;
 
   bool is_static(std::uint32_t id) const { return check_.is_static(id); }
   bool is_moving(std::uint32_t id) const { return moving_.count(id) > 0; }
@@ -118,6 +128,9 @@ class MotionStage {
   std::set<std::uint32_t> dynamic_ids_;  // of a dynamic class
   std::vector<cv::Rect> boxes_;          // of the masked and watched instances, where their features are extracted
   cv::Mat1b watched_;                    // pixels of the unmasked objects (options_.watch_objects)
+  cv::Mat1b kept_pixels_;                // of the people kept as static (Motion.keptFeatures)
+  std::vector<cv::Rect> kept_boxes_;
+  cv::Mat1b extraction_mask_;            // mask_for()'s plus the kept people, dilated (Motion.keptFeatures)
   std::set<std::uint32_t> watched_ids_;
   std::map<std::uint32_t, Eigen::Vector3d> mask_points_;  // camera frame, from the depth image (collect())
   std::map<std::uint32_t, int> mask_pixels_;              // pixels with depth of each instance

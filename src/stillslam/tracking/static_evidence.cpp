@@ -33,14 +33,18 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
                             const PosePrior* prior, const StartEvidence* start) {
-  if (!options.enabled && !options.leave_out_kept_points) return refine_pose(frame, pose, prior);
+  if (!options.enabled && !options.leave_out_kept_points && options.kept_point_sigma == 1) {
+    return refine_pose(frame, pose, prior);
+  }
+  const double kept_weight = 1 / (options.kept_point_sigma * options.kept_point_sigma);
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> trusted, others;
   std::vector<std::size_t> trusted_index, other_index;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const MapPointPtr& mp = frame.map_point(i);
     if (!mp) continue;
-    const PoseObservation obs = pose_observation(frame, i);
+    PoseObservation obs = pose_observation(frame, i);
+    if (mp->on_dynamic_instance()) obs.inv_sigma2 *= kept_weight;
     const bool evidence = !options.enabled ||
                           ((has_static_evidence(*mp, options) || (start && start->holds(*mp, frame.id()))) &&
                            !recently_rejected(*mp, options, frame.id()));
@@ -78,6 +82,7 @@ void StaticEvidenceOptions::check() const {
   at_least("StaticEvidenceOptions.min_span_frames", min_span_frames, 0);
   at_least("StaticEvidenceOptions.min_points", min_points, 3);
   at_least("StaticEvidenceOptions.quiet_frames", quiet_frames, 0);
+  in_range("StaticEvidenceOptions.kept_point_sigma", kept_point_sigma, 1, 100);
 }
 
 }  // namespace stillslam

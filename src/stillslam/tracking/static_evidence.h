@@ -44,6 +44,10 @@ struct StaticEvidenceOptions {
   // them, the pose comes from all matches. Not a Tracking.* key: System sets
   // it from Motion.enabled and Motion.keptPointsOutOfPose.
   bool leave_out_kept_points = false;
+  // Matches on a kept person that do move the pose count with this many
+  // times their keypoint's sigma (1: as any other match). Not a Tracking.*
+  // key: System sets it from Motion.enabled and Motion.keptPointSigma.
+  double kept_point_sigma = 1;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -60,7 +64,8 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 
 // refine_pose (tracking/pose_refinement.h) with the rules above: outlier
 // flags are set on all matches, the pose comes from those with evidence
-// (and, with leave_out_kept_points, not on a kept person).
+// (and, with leave_out_kept_points, not on a kept person; those on a kept
+// person weighted by kept_point_sigma).
 // Returns the number of inlier observations. A prior (optimize/pose_prior.h)
 // joins the optimization when given. `start` (optional): the points a map
 // start's check confirmed count as having evidence in its window.
