@@ -34,8 +34,8 @@ TEST(MotionSettings, KeysBindAndDefaultsStay) {
   EXPECT_EQ(s.motion.check_options().evidence.frames_for("chair"), 5);
 }
 
-// Session 9 keys: objects' own moving bar, features of unmasked objects,
-// places of instances that come back under a new id.
+// Objects' own moving bar, features of unmasked objects, places of instances
+// that come back under a new id.
 TEST(MotionSettings, ObjectAndPlaceKeysBind) {
   TempDir dir;
   const Settings defaults = load_settings(dir.write("a.yaml", kBase));
@@ -58,7 +58,7 @@ TEST(MotionSettings, ObjectAndPlaceKeysBind) {
   EXPECT_NE(g.find("Motion.placeRadius"), std::string::npos) << g;
 }
 
-// Session 10: how long points on a person kept as static live.
+// How long points on a person kept as static live.
 TEST(MotionSettings, KeptPointFramesBinds) {
   TempDir dir;
   EXPECT_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_point_frames, 30);
