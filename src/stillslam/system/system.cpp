@@ -708,24 +708,18 @@ std::vector<MapPose> System::trajectory_with_maps() const {
     kept.push_back(out[i]);
     sparse.push_back(records_[i].sparse_view);
   }
-  if (sparse_view_filter_gain_ > 0) {
+  if (sparse_view_filter_gain_ > 0 || sparse_view_smooth_frames_ > 0) {
+    // The sparse views' centres, filtered and then smoothed within each map.
     std::vector<Eigen::Vector3d> centres;
     std::vector<std::uint64_t> maps;
     for (const MapPose& p : kept) {
       centres.push_back(p.pose.T_world_cam.translation());
       maps.push_back(p.map_id);
     }
-    filter_sparse_centres(centres, sparse, maps, sparse_view_filter_gain_, sparse_view_filter_frames_);
-    for (std::size_t i = 0; i < kept.size(); ++i) kept[i].pose.T_world_cam.translation() = centres[i];
-  }
-  if (sparse_view_smooth_frames_ > 0) {
-    std::vector<Eigen::Vector3d> centres;
-    std::vector<std::uint64_t> maps;
-    for (const MapPose& p : kept) {
-      centres.push_back(p.pose.T_world_cam.translation());
-      maps.push_back(p.map_id);
+    if (sparse_view_filter_gain_ > 0) {
+      filter_sparse_centres(centres, sparse, maps, sparse_view_filter_gain_, sparse_view_filter_frames_);
     }
-    smooth_sparse_centres(centres, sparse, maps, sparse_view_smooth_frames_);
+    if (sparse_view_smooth_frames_ > 0) smooth_sparse_centres(centres, sparse, maps, sparse_view_smooth_frames_);
     for (std::size_t i = 0; i < kept.size(); ++i) kept[i].pose.T_world_cam.translation() = centres[i];
   }
   return kept;
