@@ -39,6 +39,9 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_TRUE(d.segmentation.keyframe_hold);
   EXPECT_FALSE(s.segmentation.keyframe_hold);
   EXPECT_FALSE(d.segmentation.provisional_points);
+  EXPECT_FALSE(d.segmentation.held_evidence);
+  const Settings h = load_settings(dir.write("h.yaml", kTum + "Segmentation.heldEvidence: 1\n"));
+  EXPECT_TRUE(h.segmentation.held_evidence);
   const Settings p = load_settings(dir.write("p.yaml", kTum + "Segmentation.provisionalPoints: 1\n"));
   EXPECT_TRUE(p.segmentation.provisional_points);
   EXPECT_FALSE(d.segmentation.start_check);
@@ -78,6 +81,11 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
       {kTum + "Segmentation.provisionalPoints: 2\n", "Segmentation.provisionalPoints", "must be 0 or 1"},
       {kTum + "Segmentation.provisionalPoints: 1\nSegmentation.keyframeHold: 0\n", "Segmentation.provisionalPoints",
        "needs keyframe_hold"},
+      {kTum + "Segmentation.heldEvidence: 2\n", "Segmentation.heldEvidence", "must be 0 or 1"},
+      {kTum + "Segmentation.heldEvidence: 1\nSegmentation.keyframeHold: 0\n", "Segmentation.heldEvidence",
+       "needs keyframe_hold"},
+      {kTum + "Segmentation.heldEvidence: 1\nSegmentation.provisionalPoints: 1\n", "Segmentation.heldEvidence",
+       "without provisional_points"},
       {kTum + "Segmentation.startCheck: 2\n", "Segmentation.startCheck", "must be 0 or 1"},
       {kTum + "Segmentation.keyframeCheck: -1\n", "Segmentation.keyframeCheck", "must be 0 or 1"},
       {kTum + "Segmentation.checkNewPoints: 2\n", "Segmentation.checkNewPoints", "must be 0 or 1"},

@@ -8,6 +8,7 @@
 #include "stillslam/map/map.h"
 #include "stillslam/tracking/keyframe_hold.h"
 #include "stillslam/tracking/keypoint_pixels.h"
+#include "stillslam/tracking/static_evidence.h"
 
 namespace stillslam {
 namespace {
@@ -117,3 +118,66 @@ TEST(KeyframeHold, ANewerMaskReleasesUnchecked) {
 
 }  // namespace
 }  // namespace stillslam
+
+// Segmentation.heldEvidence: the older points a held keyframe matched count
+// it in their static-evidence span while it waits (local mapping adds the
+// observation only at the release); a match the keyframe's own mask unlinks
+// loses it, and without the option nothing changes.
+TEST(KeyframeHold, HeldMatchesCountInTheEvidenceSpanUntilTheMaskUnlinksThem) {
+  test::SyntheticScene scene(300);
+  const cv::Size size(scene.make_frame(0, test::pose_at(0)).setup().camera.width(),
+                      scene.make_frame(0, test::pose_at(0)).setup().camera.height());
+  cv::Mat1b mask = cv::Mat1b::zeros(size);
+  mask(cv::Rect(0, 0, size.width / 4, size.height)).setTo(255);
+  const StaticEvidenceOptions evidence;  // a span of 10 frames
+  ASSERT_EQ(evidence.min_span_frames, 10);
+  for (const bool on : {false, true}) {
+    Map map;
+    // Frame 0's keyframe made a point of every keypoint: one observation, no span.
+    Frame f0 = scene.make_frame(0, test::pose_at(0));
+    f0.set_pose(test::pose_at(0));
+    const KeyFramePtr kf0 = map.create_keyframe(f0);
+    std::vector<MapPointPtr> points;
+    for (std::size_t i = 0; i < f0.size(); ++i) {
+      MapPointPtr mp = map.create_map_point(*f0.unproject(i), kf0.get());
+      mp->add_observation(kf0.get(), i);
+      kf0->set_map_point(i, mp);
+      points.push_back(mp);
+    }
+    // Frame 12's keyframe matched all of them and is held.
+    Frame f12 = scene.make_frame(12, test::pose_at(0));
+    f12.set_pose(test::pose_at(0));
+    for (std::size_t i = 0; i < f12.size(); ++i) f12.set_map_point(i, points[i]);
+    const KeyFramePtr held = map.create_keyframe(f12);
+    KeyframeHold hold(on);
+    hold.hold(held, keypoint_pixels(f12));
+    int with_evidence = 0;
+    for (const MapPointPtr& mp : points) with_evidence += has_static_evidence(*mp, evidence);
+    EXPECT_EQ(with_evidence, on ? static_cast<int>(points.size()) : 0);
+    for (const MapPointPtr& mp : points) EXPECT_EQ(observation_span_frames(*mp), on ? 12u : 0u);
+    // A keyframe queued behind the held one notes its frame too.
+    Frame f20 = scene.make_frame(20, test::pose_at(0));
+    f20.set_pose(test::pose_at(0));
+    f20.set_map_point(1, points[1]);
+    EXPECT_TRUE(hold.pass(map.create_keyframe(f20)).empty());
+    EXPECT_EQ(points[1]->held_observation_frame(), on ? 20u : 0u);
+    EXPECT_EQ(points[2]->held_observation_frame(), on ? 12u : 0u);
+
+    EXPECT_EQ(hold.assign(7), 1);
+    const KeyframeHoldRelease r = hold.release(7, {mask});
+    ASSERT_EQ(r.keyframes.size(), 2u);
+    int inside = 0;
+    for (std::size_t i = 0; i < f12.size(); ++i) {
+      const cv::Point2f& p = f12.keypoints_raw()[i].pt;
+      const bool in = mask(cv::Point(cvRound(p.x), cvRound(p.y))) != 0;
+      inside += in;
+      // Unlinked inside the mask: neither the held keyframe nor its note (a
+      // later keyframe's note stays: point 1 is frame 20's match as well).
+      const bool kept = !in || (i == 1);
+      EXPECT_EQ(has_static_evidence(*points[i], evidence), on && kept) << i;
+      EXPECT_EQ(held->map_point(i) == nullptr, in) << i;
+    }
+    EXPECT_GT(inside, 10);
+    EXPECT_EQ(r.unlinked, inside);
+  }
+}

@@ -81,6 +81,16 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   // saved with the map, so maps for localization hold no people.
   bool on_dynamic_instance() const { return on_dynamic_instance_; }
   void mark_on_dynamic_instance() { on_dynamic_instance_ = true; }
+  // The frame of the newest keyframe that matched this point but waits for
+  // its frame's own mask before local mapping registers the observation
+  // (tracking/keyframe_hold.h with Segmentation.heldEvidence); 0: none. The
+  // static-evidence span (tracking/static_evidence.h) counts it as an
+  // observation. Set and read under Map::update_mutex().
+  std::uint64_t held_observation_frame() const { return held_observation_frame_; }
+  void note_held_observation(std::uint64_t frame_id) {
+    held_observation_frame_ = std::max(held_observation_frame_, frame_id);
+  }
+  void clear_held_observation() { held_observation_frame_ = 0; }
 
   // Recomputes the representative descriptor: the observation descriptor with
   // the least median Hamming distance to all others. Returns at once when the
@@ -133,6 +143,7 @@ class MapPoint : public std::enable_shared_from_this<MapPoint> {
   int visible_ = 1, found_ = 1;
   int outlier_streak_ = 0;  // not saved in map files: a tracking statistic like the two above
   std::optional<std::uint64_t> last_outlier_frame_;  // nor this one
+  std::uint64_t held_observation_frame_ = 0;          // nor this one
   bool on_dynamic_instance_ = false;  // such points are left out of map files
   bool provisional_ = false;  // not saved in map files: maps are saved after the last check
   bool bad_ = false;

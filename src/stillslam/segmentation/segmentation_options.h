@@ -54,6 +54,10 @@ struct SegmentationOptions {
   // from local mapping until its frame's own mask (requested for it) arrives
   // (tracking/keyframe_hold.h).
   bool keyframe_hold = true;
+  // Async: Segmentation.heldEvidence, with keyframe_hold: the older points a
+  // held keyframe matched count it in their static-evidence span at once, not
+  // only when local mapping gets it (tracking/keyframe_hold.h).
+  bool held_evidence = false;
   // Async: Segmentation.provisionalPoints, with keyframe_hold: such a keyframe
   // goes to local mapping at once and only its new depth points wait for the
   // frame's own mask, provisional (tracking/provisional_points.h).
@@ -96,6 +100,10 @@ struct SegmentationOptions {
   double near_person_px_per_frame = 0;
   int near_person_max_px = 40;          // Segmentation.nearPersonMaxPx
   double near_person_depth_band = 0.5;  // Segmentation.nearPersonDepthBand (metres)
+  // Segmentation.nearPersonOutOfPose, with near_person_px_per_frame > 0: under
+  // a carried mask the matches of those keypoints do not move the frame's pose
+  // either (tracking/near_person.h).
+  bool near_person_out_of_pose = false;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

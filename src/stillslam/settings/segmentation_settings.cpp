@@ -96,6 +96,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("threadNice", options.thread_nice, "SegmentationOptions.thread_nice", {0, 19});
   keys.flag("freshMaskCull", options.fresh_mask_cull);
   keys.flag("keyframeHold", options.keyframe_hold);
+  keys.flag("heldEvidence", options.held_evidence, "SegmentationOptions.held_evidence");
   keys.flag("provisionalPoints", options.provisional_points, "SegmentationOptions.provisional_points");
   keys.flag("startCheck", options.start_check, "SegmentationOptions.start_check");
   keys.flag("keyframeCheck", options.keyframe_check, "SegmentationOptions.keyframe_check");
@@ -105,6 +106,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("nearPersonMaxPx", options.near_person_max_px, "SegmentationOptions.near_person_max_px", {0, 1000});
   keys.number("nearPersonDepthBand", options.near_person_depth_band, "SegmentationOptions.near_person_depth_band",
               {0, 100, true});
+  keys.flag("nearPersonOutOfPose", options.near_person_out_of_pose, "SegmentationOptions.near_person_out_of_pose");
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

@@ -122,7 +122,7 @@ void System::build_pipeline(const Settings& settings) {
       if (settings.segmentation.keyframe_hold && settings.segmentation.provisional_points) {
         provisional_points_ = std::make_unique<ProvisionalPoints>();
       } else if (settings.segmentation.keyframe_hold) {
-        keyframe_hold_ = std::make_unique<KeyframeHold>();
+        keyframe_hold_ = std::make_unique<KeyframeHold>(settings.segmentation.held_evidence);
       }
       keyframe_mask_age_ = settings.segmentation.keyframe_mask_age;
       check_start_ = settings.segmentation.start_check;
@@ -228,6 +228,7 @@ void System::build_pipeline(const Settings& settings) {
     tracking.near_person.px_per_frame = settings.segmentation.near_person_px_per_frame;
     tracking.near_person.max_px = settings.segmentation.near_person_max_px;
     tracking.near_person.depth_band_m = settings.segmentation.near_person_depth_band;
+    tracking.near_person.out_of_pose = settings.segmentation.near_person_out_of_pose;
   }
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }

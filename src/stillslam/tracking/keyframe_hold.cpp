@@ -3,9 +3,22 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "stillslam/map/map_point.h"
+#include "stillslam/tracking/fresh_mask_check.h"
+
 namespace stillslam {
 
+void KeyframeHold::note_matches(const KeyFrame& kf) const {
+  if (!evidence_while_held_) return;
+  for (std::size_t i = 0; i < kf.size(); ++i) {
+    const MapPointPtr& mp = kf.map_point(i);
+    // The keyframe's own new points already have it as their observation.
+    if (mp && !mp->is_bad() && !mp->is_observed_by(&kf)) mp->note_held_observation(kf.frame_id());
+  }
+}
+
 void KeyframeHold::hold(KeyFramePtr kf, std::vector<cv::Point2f> raw_pixels) {
+  note_matches(*kf);
   queue_.push_back({std::move(kf), std::nullopt, std::move(raw_pixels), true});
 }
 
@@ -13,6 +26,7 @@ int KeyframeHold::assign(std::size_t frame_index) { return assign_frame_index(qu
 
 std::vector<KeyFramePtr> KeyframeHold::pass(KeyFramePtr kf) {
   if (queue_.empty()) return {std::move(kf)};
+  note_matches(*kf);
   queue_.push_back({std::move(kf), std::nullopt, {}, false});
   return {};
 }
@@ -31,6 +45,15 @@ KeyframeHoldRelease KeyframeHold::release(std::size_t frame_index, const std::ve
     if (e.waits && *e.frame_index < frame_index) ++out.unchecked;
     if (e.waits && *e.frame_index == frame_index && !e.kf->is_bad()) {
       const std::uint64_t id = e.kf->id();
+      if (evidence_while_held_) {
+        // A match the mask unlinks below was not an observation after all.
+        for (std::size_t i = 0; i < e.kf->size() && i < e.raw_pixels.size(); ++i) {
+          const MapPointPtr& mp = e.kf->map_point(i);
+          if (mp && mp->held_observation_frame() == e.kf->frame_id() && on_any_instance(instances, e.raw_pixels[i])) {
+            mp->clear_held_observation();
+          }
+        }
+      }
       const PointsInsideMask removed = remove_points_inside(
           *e.kf, e.raw_pixels, instances, [id](const MapPoint& mp) { return mp.first_keyframe_id() == id; });
       out.culled += removed.culled;

@@ -8,6 +8,15 @@
 // first its points inside that mask go (its own new points are culled, its
 // matches to older points are unlinked). Keyframes reach local mapping in the
 // order they were made: a fresh keyframe waits behind held ones.
+//
+// Local mapping adds a keyframe's observations of older points when it gets
+// the keyframe, so while a keyframe waits here the points it matched do not
+// count it in their static-evidence span (tracking/static_evidence.h): in a
+// sparse stereo map a held keyframe is often the one that would give them the
+// span. With `evidence_while_held` (Segmentation.heldEvidence) each older point
+// a waiting keyframe matched notes that keyframe's frame at once
+// (MapPoint::note_held_observation); at the release a match unlinked inside
+// the keyframe's own mask loses the note again.
 #include <opencv2/core.hpp>
 
 #include <cstddef>
@@ -28,6 +37,7 @@ struct KeyframeHoldRelease {
 
 class KeyframeHold {
  public:
+  explicit KeyframeHold(bool evidence_while_held = false) : evidence_while_held_(evidence_while_held) {}
   // A keyframe made with a carried mask from the frame being tracked;
   // raw_pixels: its keypoints in the image (Frame::keypoints_raw), where the
   // mask is looked up. It waits for the input index of its frame (assign()).
@@ -53,6 +63,10 @@ class KeyframeHold {
   KeyframeHoldRelease release_all();
 
  private:
+  // The older points kf matched note its frame (evidence_while_held_).
+  void note_matches(const KeyFrame& kf) const;
+
+  bool evidence_while_held_ = false;
   std::deque<MaskWait> queue_;  // waits: held
 };
 

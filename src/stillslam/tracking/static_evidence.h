@@ -53,7 +53,8 @@ struct StaticEvidenceOptions {
 };
 
 // Frames between the first and the last keyframe observing the point (0 for
-// points without observations, e.g. temporary ones).
+// points without observations, e.g. temporary ones); a keyframe held from
+// local mapping that matched it (MapPoint::held_observation_frame) counts.
 std::uint64_t observation_span_frames(const MapPoint& point);
 
 bool has_static_evidence(const MapPoint& point, const StaticEvidenceOptions& options);
