@@ -64,6 +64,9 @@ TEST(SettingsSegmentationAsync, DefaultsAndKeys) {
   EXPECT_EQ(n.segmentation.near_person_px_per_frame, 4.5);
   EXPECT_EQ(n.segmentation.near_person_max_px, 25);
   EXPECT_EQ(n.segmentation.near_person_depth_band, 0.3);
+  EXPECT_TRUE(d.segmentation.near_person_at_start);
+  const Settings ns = load_settings(dir.write("ns.yaml", kTum + "Segmentation.nearPersonAtStart: 0\n"));
+  EXPECT_FALSE(ns.segmentation.near_person_at_start);
 }
 
 TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
@@ -102,6 +105,7 @@ TEST(SettingsSegmentationAsync, BadValuesNameTheKey) {
        "is 101: must be in [0, 100]"},
       {kTum + "Segmentation.nearPersonMaxPx: -1\n", "Segmentation.nearPersonMaxPx", "is -1: must be in [0, 1000]"},
       {kTum + "Segmentation.nearPersonMaxPx: 1001\n", "Segmentation.nearPersonMaxPx", "is 1001: must be in [0, 1000]"},
+      {kTum + "Segmentation.nearPersonAtStart: 2\n", "Segmentation.nearPersonAtStart", "must be 0 or 1"},
       {kTum + "Segmentation.nearPersonDepthBand: 0\n", "Segmentation.nearPersonDepthBand", "is 0: must be in (0, 100]"},
       {kTum + "Segmentation.nearPersonDepthBand: 101\n", "Segmentation.nearPersonDepthBand",
        "is 101: must be in (0, 100]"},

@@ -116,8 +116,6 @@ TEST(KeyframeHold, ANewerMaskReleasesUnchecked) {
   EXPECT_TRUE(hold.empty());
 }
 
-}  // namespace
-}  // namespace stillslam
 
 // Segmentation.heldEvidence: the older points a held keyframe matched count
 // it in their static-evidence span while it waits (local mapping adds the
@@ -181,3 +179,6 @@ TEST(KeyframeHold, HeldMatchesCountInTheEvidenceSpanUntilTheMaskUnlinksThem) {
     EXPECT_EQ(r.unlinked, inside);
   }
 }
+
+}  // namespace
+}  // namespace stillslam

@@ -123,11 +123,12 @@ TEST(NearPerson, OptionsCheckNamesTheField) {
 // rule on, no map point near the person at its depth; the rest as without it.
 TEST(NearPerson, TheTrackerMakesNoDepthPointNearTheCarriedPerson) {
   test::SyntheticScene scene(2500);
-  const auto run = [&](bool rule, std::size_t* skipped) {
+  const auto run = [&](bool rule, std::size_t* skipped, bool at_start = true) {
     Map map;
     TrackerOptions options;
     options.init_min_keypoints = 300;
     if (rule) options.near_person = on();
+    options.near_person.at_start = at_start;
     Tracker tracker(map, options, {});
     // Unmasked frames (carried instances only): the start check's 3 frames confirm frame 0, the first keyframe.
     for (std::uint64_t i = 0; i < 4; ++i) {
@@ -162,6 +163,18 @@ TEST(NearPerson, TheTrackerMakesNoDepthPointNearTheCarriedPerson) {
   EXPECT_GT(near_with_point_without, 20u);
   EXPECT_EQ(skipped_on, near_with_point_without);
   EXPECT_EQ(kept_elsewhere, elsewhere);
+  // Segmentation.nearPersonAtStart 0: the first keyframe keeps every point, as without the rule.
+  std::size_t skipped_not_at_start = 0;
+  const KeyFramePtr not_at_start = run(true, &skipped_not_at_start, false);
+  ASSERT_TRUE(not_at_start);
+  EXPECT_EQ(skipped_not_at_start, 0u);
+  std::size_t same = 0, points = 0;
+  for (std::size_t i = 0; i < without->size(); ++i) {
+    points += without->map_point(i) != nullptr;
+    same += (without->map_point(i) != nullptr) && (not_at_start->map_point(i) != nullptr);
+    EXPECT_EQ(not_at_start->map_point(i) != nullptr, without->map_point(i) != nullptr) << i;
+  }
+  EXPECT_EQ(same, points);
 }
 
 }  // namespace

@@ -70,11 +70,6 @@ class Frame {
   // of; empty otherwise.
   const std::vector<CarriedInstance>& carried_instances() const { return carried_instances_; }
   void set_carried_instances(std::vector<CarriedInstance> instances) { carried_instances_ = std::move(instances); }
-  // Per keypoint: 1 when its match is kept from moving the pose (it lies near
-  // a carried person at its depth, tracking/near_person.h with
-  // Segmentation.nearPersonOutOfPose); empty: every match may move it.
-  const std::vector<char>& out_of_pose() const { return out_of_pose_; }
-  void set_out_of_pose(std::vector<char> flags) { out_of_pose_ = std::move(flags); }
 
   // Matched map points and outlier flags.
   const MapPointPtr& map_point(std::size_t i) const { return map_points_[i]; }
@@ -112,7 +107,6 @@ class Frame {
   float masked_fraction_ = 0;
   int mask_age_ = -1;
   std::vector<CarriedInstance> carried_instances_;
-  std::vector<char> out_of_pose_;
 };
 
 }  // namespace stillslam

@@ -25,10 +25,6 @@ void SegmentationOptions::check() const {
   in_range("SegmentationOptions.near_person_px_per_frame", near_person_px_per_frame, 0, 100);
   in_range("SegmentationOptions.near_person_max_px", near_person_max_px, 0, 1000);
   in_half_open("SegmentationOptions.near_person_depth_band", near_person_depth_band, 0, 100);
-  if (near_person_out_of_pose && !(near_person_px_per_frame > 0)) {
-    throw OptionError("SegmentationOptions.near_person_out_of_pose", "1",
-                      "needs near_person_px_per_frame > 0 (Segmentation.nearPersonPxPerFrame): it uses its radius");
-  }
   if (held_evidence && (!keyframe_hold || provisional_points)) {
     throw OptionError("SegmentationOptions.held_evidence", "1",
                       "needs keyframe_hold (Segmentation.keyframeHold: 1) without provisional_points "

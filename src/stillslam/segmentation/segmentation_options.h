@@ -100,10 +100,8 @@ struct SegmentationOptions {
   double near_person_px_per_frame = 0;
   int near_person_max_px = 40;          // Segmentation.nearPersonMaxPx
   double near_person_depth_band = 0.5;  // Segmentation.nearPersonDepthBand (metres)
-  // Segmentation.nearPersonOutOfPose, with near_person_px_per_frame > 0: under
-  // a carried mask the matches of those keypoints do not move the frame's pose
-  // either (tracking/near_person.h).
-  bool near_person_out_of_pose = false;
+  // Segmentation.nearPersonAtStart: the near-person rule on the map's first keyframe too.
+  bool near_person_at_start = true;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };

@@ -106,7 +106,7 @@ void bind_segmentation(const YamlReader& yaml, SegmentationOptions& options,
   keys.integer("nearPersonMaxPx", options.near_person_max_px, "SegmentationOptions.near_person_max_px", {0, 1000});
   keys.number("nearPersonDepthBand", options.near_person_depth_band, "SegmentationOptions.near_person_depth_band",
               {0, 100, true});
-  keys.flag("nearPersonOutOfPose", options.near_person_out_of_pose, "SegmentationOptions.near_person_out_of_pose");
+  keys.flag("nearPersonAtStart", options.near_person_at_start);
   keys.reject_unknown_keys();
   keys.check([&] { options.check(); });
 }

@@ -228,7 +228,7 @@ void System::build_pipeline(const Settings& settings) {
     tracking.near_person.px_per_frame = settings.segmentation.near_person_px_per_frame;
     tracking.near_person.max_px = settings.segmentation.near_person_max_px;
     tracking.near_person.depth_band_m = settings.segmentation.near_person_depth_band;
-    tracking.near_person.out_of_pose = settings.segmentation.near_person_out_of_pose;
+    tracking.near_person.at_start = settings.segmentation.near_person_at_start;
   }
   tracker_ = std::make_unique<Tracker>(map, tracking, std::move(link));
 }

@@ -24,11 +24,10 @@ struct NearPersonOptions {
   // to be on the person when its depth differs from the instance's median
   // depth by at most this (metres).
   double depth_band_m = 0.5;
-  // Segmentation.nearPersonOutOfPose: the matches of such keypoints do not
-  // move a frame's pose under a carried mask either (they are classified
-  // against the pose of the others, tracking/static_evidence.h), unless too
-  // few others remain. Needs px_per_frame > 0.
-  bool out_of_pose = false;
+  // Segmentation.nearPersonAtStart: the rule applies to the map's first
+  // keyframe too (0: that keyframe keeps every depth point the start check
+  // kept; a map started among people then has its static points next to them).
+  bool at_start = true;
   bool enabled() const { return px_per_frame > 0; }
   double radius_px(int mask_age) const;
   // Throws OptionError naming the field, its value and the valid range.

@@ -38,22 +38,9 @@ bool recently_rejected(const MapPoint& point, const StaticEvidenceOptions& optio
 
 int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, const StaticEvidenceOptions& options,
                             const PosePrior* prior, const StartEvidence* start) {
-  // Matches near a carried person (Frame::out_of_pose) are classified, never trusted.
-  const std::vector<char>& out_of_pose = frame.out_of_pose();
-  const bool any_out = !out_of_pose.empty();
-  if (!options.enabled && !options.leave_out_kept_points && options.kept_point_sigma == 1 && !any_out) {
+  if (!options.enabled && !options.leave_out_kept_points && options.kept_point_sigma == 1) {
     return refine_pose(frame, pose, prior);
   }
-  // Too few trusted matches: with some kept out of the pose, all the others
-  // first (as without static evidence), then all matches.
-  const auto fallback = [&]() {
-    if (any_out && options.enabled) {
-      StaticEvidenceOptions all = options;
-      all.enabled = false;
-      return refine_pose_on_evidence(frame, pose, all, prior, start);
-    }
-    return refine_pose(frame, pose, prior);
-  };
   const double kept_weight = 1 / (options.kept_point_sigma * options.kept_point_sigma);
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> trusted, others;
@@ -66,8 +53,7 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
     const bool evidence = !options.enabled ||
                           ((has_static_evidence(*mp, options) || (start && start->holds(*mp, frame.id()))) &&
                            !recently_rejected(*mp, options, frame.id()));
-    const bool kept_out = any_out && i < out_of_pose.size() && out_of_pose[i];
-    if (evidence && !kept_out && !(options.leave_out_kept_points && mp->on_dynamic_instance())) {
+    if (evidence && !(options.leave_out_kept_points && mp->on_dynamic_instance())) {
       trusted.push_back(obs);
       trusted_index.push_back(i);
     } else {
@@ -75,11 +61,11 @@ int refine_pose_on_evidence(Frame& frame, const PoseOptimizerOptions& pose, cons
       other_index.push_back(i);
     }
   }
-  if (static_cast<int>(trusted.size()) < options.min_points) return fallback();
+  if (static_cast<int>(trusted.size()) < options.min_points) return refine_pose(frame, pose, prior);
   const PoseOptimizationResult result = optimize_pose(setup.camera, frame.T_cam_world(), trusted, pose, prior);
   // The old points disagree among themselves (the map moved, or they are
   // mismatched): no consensus to lean on.
-  if (result.num_inliers < options.min_points) return fallback();
+  if (result.num_inliers < options.min_points) return refine_pose(frame, pose, prior);
   frame.set_pose(result.T_cam_world);
   for (std::size_t k = 0; k < trusted_index.size(); ++k) frame.set_outlier(trusted_index[k], !result.inlier[k]);
   const Intrinsics intrinsics(setup.camera);

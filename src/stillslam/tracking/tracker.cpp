@@ -75,11 +75,6 @@ void Tracker::localize_in(Map& map) {
 TrackingResult Tracker::track(Frame& frame) {
   std::lock_guard<std::mutex> lock(map_->update_mutex());
   TrackingResult result;
-  // Under a carried mask, matches near a carried person at its depth do not move the pose.
-  if (options_.near_person.out_of_pose && frame.mask_age() > 0) {
-    std::vector<char> near = near_carried_person(frame, options_.near_person);
-    if (std::find(near.begin(), near.end(), char{1}) != near.end()) frame.set_out_of_pose(std::move(near));
-  }
   std::string start_note;  // how the map started, when it started from an earlier frame at this one
   if (state_ == TrackingState::NotInitialized) {
     if (options_.localization_only) {
@@ -402,8 +397,10 @@ void Tracker::initialize(Frame& frame, const Frame& tracked, const std::vector<b
   start_frames_rejected_ = 0;
   frame.set_pose(Eigen::Isometry3d::Identity());
   KeyFramePtr kf = map_->create_keyframe(frame);
-  const std::vector<char> near_person =
-      frame.out_of_pose().empty() ? near_carried_person(frame, options_.near_person) : frame.out_of_pose();
+  // The rule on the map's first keyframe only with NearPersonOptions::at_start.
+  const std::vector<char> near_person = options_.near_person.at_start
+                                            ? near_carried_person(frame, options_.near_person)
+                                            : std::vector<char>(frame.size(), 0);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const auto p = kf->unproject(i);
     if (!p || (!keep.empty() && !keep[i])) continue;
@@ -695,8 +692,7 @@ void Tracker::create_keyframe(Frame& frame, bool start_window) {
   // Under a carried mask too old, the new points wait for the frame's own mask.
   const bool provisional = makes_provisional_points(frame);
   // Under a carried mask, keypoints near a carried person at its depth are likely on it.
-  const std::vector<char> near_person =
-      frame.out_of_pose().empty() ? near_carried_person(frame, options_.near_person) : frame.out_of_pose();
+  const std::vector<char> near_person = near_carried_person(frame, options_.near_person);
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_point(i) && !failed_match[i]) {
       if (near_person[i]) {
