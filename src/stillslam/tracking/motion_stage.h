@@ -22,9 +22,11 @@
 // ids swapped by mask overlap), while the one found at its own place blocks
 // the hand-over to others.
 //
-// Per frame, in order: mask_for() (frame builder, fresh segmentation),
-// collect() (frame builder, after extraction), on_tracked() (after tracking,
-// map lock held). Frames without a fresh segmentation skip the stage.
+// Per frame, in order: set_prediction() (System, before the frame is built),
+// mask_for() (frame builder, fresh segmentation), collect() (frame builder,
+// after extraction), judge_predicted() (frame builder, Motion.predictedCheck),
+// on_tracked() (after tracking, map lock held). Frames without a fresh
+// segmentation skip the stage.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
