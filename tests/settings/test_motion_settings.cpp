@@ -92,6 +92,26 @@ TEST(MotionSettings, KeptFeaturesBinds) {
   EXPECT_NE(e.find("Motion.keptFeatures"), std::string::npos) << e;
 }
 
+TEST(MotionSettings, KeptFeaturesAreaFactorBinds) {
+  TempDir dir;
+  EXPECT_DOUBLE_EQ(load_settings(dir.write("a.yaml", kBase)).motion.kept_features_area_factor, 0);
+  EXPECT_DOUBLE_EQ(
+      load_settings(dir.write("b.yaml", kBase + "Motion.keptFeaturesAreaFactor: 1.5\n")).motion.kept_features_area_factor,
+      1.5);
+  for (const std::string bad : {"Motion.keptFeaturesAreaFactor: -0.1\n", "Motion.keptFeaturesAreaFactor: 11\n"}) {
+    const std::string e = test::settings_error(dir, kBase + bad);
+    EXPECT_NE(e.find("Motion.keptFeaturesAreaFactor"), std::string::npos) << e;
+  }
+}
+
+TEST(MotionSettings, PredictedCheckBinds) {
+  TempDir dir;
+  EXPECT_FALSE(load_settings(dir.write("a.yaml", kBase)).motion.predicted_check);
+  EXPECT_TRUE(load_settings(dir.write("b.yaml", kBase + "Motion.predictedCheck: 1\n")).motion.predicted_check);
+  const std::string e = test::settings_error(dir, kBase + "Motion.predictedCheck: 2\n");
+  EXPECT_NE(e.find("Motion.predictedCheck"), std::string::npos) << e;
+}
+
 TEST(MotionSettings, KeptPointsOutOfBABinds) {
   TempDir dir;
   EXPECT_FALSE(load_settings(dir.write("a.yaml", kBase)).motion.kept_points_out_of_ba);

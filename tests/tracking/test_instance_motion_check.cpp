@@ -86,6 +86,47 @@ TEST(InstanceMotionCheck, StillInstanceIsKeptMovingInstanceIsNot) {
   EXPECT_FALSE(check.add(frame_at(41, points, rng, 0.5)).compared);
 }
 
+// peek() gives the verdicts and residuals add() of the same frame gives,
+// and changes nothing: the frames kept and the evidence stay as they were.
+TEST(InstanceMotionCheck, PeekJudgesAFrameWithoutKeepingIt) {
+  std::mt19937 rng(7);
+  const std::vector<ScenePoint> points = scene(rng);
+  InstanceMotionCheckOptions o;
+  o.span = 6;
+  o.evidence.default_frames = 3;
+  InstanceMotionCheck check(camera(), o), twin(camera(), o);
+  std::vector<MotionCheckFrame> frames;
+  for (int k = 0; k < 20; ++k) frames.push_back(frame_at(k, points, rng, 0.5));
+  for (int k = 0; k < 20; ++k) {
+    SCOPED_TRACE(k);
+    const MotionCheckResult peeked = check.peek(frames[k]);
+    const MotionCheckResult peeked_again = check.peek(frames[k]);
+    const MotionCheckResult added = check.add(frames[k]);
+    twin.add(frames[k]);
+    EXPECT_EQ(peeked.compared, added.compared);
+    EXPECT_EQ(peeked.compared, k >= o.span);
+    EXPECT_EQ(peeked.background_matches, added.background_matches);
+    EXPECT_DOUBLE_EQ(peeked.background_median_px, added.background_median_px);
+    ASSERT_EQ(peeked.instances.size(), added.instances.size());
+    ASSERT_EQ(peeked_again.instances.size(), added.instances.size());
+    for (std::size_t i = 0; i < added.instances.size(); ++i) {
+      EXPECT_EQ(peeked.instances[i].verdict, added.instances[i].verdict);
+      EXPECT_DOUBLE_EQ(peeked.instances[i].median_px, added.instances[i].median_px);
+      EXPECT_EQ(peeked.instances[i].is_static, added.instances[i].is_static);
+      EXPECT_DOUBLE_EQ(peeked_again.instances[i].log_odds, added.instances[i].log_odds);
+    }
+    // A peek at a later frame leaves the check as its twin, which never peeked.
+    if (k + 1 < 20) check.peek(frames[k + 1]);
+    EXPECT_EQ(check.is_static(1), twin.is_static(1));
+  }
+  EXPECT_TRUE(check.is_static(1));
+  EXPECT_FALSE(check.is_static(2));
+  // The walking person disagrees in a peek as in add().
+  const MotionCheckResult last = check.peek(frame_at(20, points, rng, 0.5));
+  ASSERT_EQ(last.instances.size(), 2u);
+  EXPECT_EQ(last.instances[1].verdict, MotionVerdict::Disagrees);
+}
+
 TEST(InstanceMotionCheck, WithoutDepthTheEpipolarResidualStillSeesCrossingMotion) {
   std::mt19937 rng(5);
   std::vector<ScenePoint> points = scene(rng);

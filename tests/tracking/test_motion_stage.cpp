@@ -109,7 +109,7 @@ struct StageRun {
 // frame_features: the frames' ORB budget.
 StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_from = -1, int hide_to = -1,
                    int frame_features = OrbOptions{}.n_features, bool persistent_points = false,
-                   PlainBox plain = {}) {
+                   PlainBox plain = {}, int prediction_lag = 0) {
   OrbOptions frame_orb;
   frame_orb.n_features = frame_features;
   const CameraCalibration calib = pinhole_calibration(kFx, kFx, 320, 240, 640, 480);
@@ -133,14 +133,19 @@ StageRun run_scene(int frames, bool box_moves, MotionOptions options, int hide_f
     in.depth = scene.depth(k);
     in.index = static_cast<std::size_t>(k);
     in.name = "frame " + std::to_string(k);
+    // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
+    const auto pose_of = [](int frame_index) {
+      Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+      T_world_cam.translation().x() = kShiftPx * frame_index * kDepth / kFx;
+      return Eigen::Isometry3d(T_world_cam.inverse());
+    };
+    // The predicted pose (Motion.predictedCheck): exact, or that of prediction_lag frames before.
+    stage.set_prediction(pose_of(std::max(0, k - prediction_lag)));
     FrameBuildStats stats;
     Frame frame = builder.build(in, static_cast<std::uint64_t>(k), &stats);
     out.watched_features.push_back(stage.watched_features());
     out.frame_features.push_back(static_cast<int>(frame.size()));
-    // Exact pose: the camera slides along +x, kShiftPx pixels a frame.
-    Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
-    T_world_cam.translation().x() = kShiftPx * k * kDepth / kFx;
-    frame.set_pose(T_world_cam.inverse());
+    frame.set_pose(pose_of(k));
     for (std::size_t i = 0; i < frame.size(); ++i) {
       if (persistent_points && i < points.size() && !points[i]->is_bad()) {
         frame.set_map_point(i, points[i]);
@@ -351,6 +356,81 @@ TEST(MotionStage, PlainBoxFoundMovingFromDepth) {
   plain.speed = -kShiftPx;
   const StageRun both_still = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
   for (int k = 0; k < 20; ++k) EXPECT_EQ(both_still.stats[k].moving_instances, 0) << k;
+}
+
+// Motion.predictedCheck: the box is judged at the frame's predicted pose
+// before the frame is tracked, so the frame whose comparison finds it moving
+// is masked already (without the check: from the next frame, above); the
+// same for the plain box found from depth. A still box stays unmasked, also
+// when the prediction is a frame behind (2 px off over the whole view).
+TEST(MotionStage, AnObjectFoundMovingAtThePredictedPoseIsMaskedInItsOwnFrame) {
+  MotionOptions o;
+  o.span = 6;
+  o.predicted_check = true;
+  const StageRun r = run_scene(20, true, o);
+  for (int k = 0; k < o.span; ++k) EXPECT_EQ(r.masked_share_box[k], 0.0) << k;
+  EXPECT_EQ(r.masked_share_box[o.span], 1.0);
+  EXPECT_EQ(r.stats[o.span].moving_instances, 1);
+  EXPECT_EQ(r.stats[o.span].predicted_moving_instances, 1);
+  EXPECT_GT(r.stats[o.span].features_removed_by_motion, 5);
+  for (int k = o.span + 1; k < 20; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(r.masked_share_box[k], 1.0);
+    EXPECT_EQ(r.stats[k].moving_instances, 1);
+    EXPECT_EQ(r.stats[k].predicted_moving_instances, 0);  // masked since
+  }
+  // Its features were removed before tracking: none left for on_tracked() to cull.
+  EXPECT_EQ(r.culled[o.span], 0);
+  o.predicted_check = false;
+  const StageRun off = run_scene(20, true, o);
+  EXPECT_EQ(off.masked_share_box[o.span], 0.0);
+  EXPECT_EQ(off.stats[o.span].predicted_moving_instances, 0);
+  o.predicted_check = true;
+  const StageRun lag = run_scene(20, false, o, -1, -1, OrbOptions{}.n_features, false, {}, 1);
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_EQ(lag.masked_share_box[k], 0.0) << k;
+    EXPECT_EQ(lag.stats[k].moving_instances, 0) << k;
+  }
+  o.free_space_share = 0.3;
+  PlainBox plain;
+  plain.enabled = true;
+  plain.speed = 10;
+  const StageRun depth = run_scene(20, true, o, -1, -1, OrbOptions{}.n_features, false, plain);
+  for (int k = 0; k < o.span; ++k) EXPECT_EQ(depth.stats[k].moving_instances, 0) << k;
+  for (int k = o.span; k < 20; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ(depth.stats[k].moving_instances, 1);
+    EXPECT_GT(depth.masked_share_box[k], 0.95);
+  }
+  EXPECT_EQ(depth.stats[o.span].predicted_moving_instances, 1);
+}
+
+// Motion.keptFeaturesAreaFactor: the kept person's own budget is its share
+// of the image's pixels times the frame's budget (times the factor), capped
+// by Motion.keptFeatures.
+TEST(MotionStage, AKeptPersonsOwnBudgetCanScaleWithItsArea) {
+  MotionOptions o;
+  o.span = 6;
+  o.person_frames = 10;
+  o.kept_features = 400;
+  const int first_static = o.span + o.person_frames, frames = 22, budget = 400;
+  const StageRun fixed = run_scene(frames, false, o, -1, -1, budget);
+  o.kept_features_area_factor = 1;
+  const StageRun scaled = run_scene(frames, false, o, -1, -1, budget);
+  o.kept_features_area_factor = 0.5;
+  const StageRun half = run_scene(frames, false, o, -1, -1, budget);
+  // The person covers 140 x 220 of 640 x 480 pixels (10 %) and the stage is
+  // given the default ORB settings (1000 features; System gives it the
+  // frame's): about 100 features.
+  const int area_budget = static_cast<int>(std::lround(OrbOptions{}.n_features * 140.0 * 220.0 / (640.0 * 480.0)));
+  for (int k = first_static; k < frames; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_GT(fixed.stats[k].features_kept_by_motion, scaled.stats[k].features_kept_by_motion * 3 / 2);
+    EXPECT_GT(scaled.stats[k].features_kept_by_motion, area_budget / 2);
+    EXPECT_LE(scaled.stats[k].features_kept_by_motion, area_budget * 3 / 2);
+    EXPECT_LE(half.stats[k].features_kept_by_motion, area_budget * 3 / 4);
+    EXPECT_LT(half.stats[k].features_kept_by_motion, scaled.stats[k].features_kept_by_motion);
+  }
 }
 
 TEST(MotionStage, OptionsOutOfRangeNameTheField) {

@@ -19,11 +19,14 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.flag("keptPointsOutOfPose", options.kept_points_out_of_pose, "MotionOptions.kept_points_out_of_pose");
   keys.number("keptPointSigma", options.kept_point_sigma, "MotionOptions.kept_point_sigma", {1, 100});
   keys.integer("keptFeatures", options.kept_features, "MotionOptions.kept_features", {0, 10000});
+  keys.number("keptFeaturesAreaFactor", options.kept_features_area_factor,
+              "MotionOptions.kept_features_area_factor", {0, 10});
   keys.flag("keptPointsOutOfBA", options.kept_points_out_of_ba, "MotionOptions.kept_points_out_of_ba");
   keys.number("freeSpaceShare", options.free_space_share, "MotionOptions.free_space_share", {0, 1});
   keys.integer("freeSpaceFrames", options.free_space_frames, "MotionOptions.free_space_frames", {0, 100});
   keys.flag("freeSpaceVacated", options.free_space_vacated, "MotionOptions.free_space_vacated");
   keys.flag("freeSpaceNearer", options.free_space.count_nearer, "FreeSpaceOptions.count_nearer");
+  keys.flag("predictedCheck", options.predicted_check, "MotionOptions.predicted_check");
   keys.number("placeRadius", options.place_radius_m, "MotionOptions.place_radius_m", {0, 10});
   keys.integer("placeMemoryFrames", options.place_memory_frames, "MotionOptions.place_memory_frames", {0, 100000});
   keys.flag("sparseView", options.sparse_view.enabled, "SparseViewOptions.enabled");

@@ -151,6 +151,7 @@ nlohmann::json to_json(const FrameStats& f) {
            {{"judged", f.build.motion.judged},
             {"static_instances", f.build.motion.static_instances},
             {"moving_instances", f.build.motion.moving_instances},
+            {"predicted_moving_instances", f.build.motion.predicted_moving_instances},
             {"features_removed_by_class", f.build.motion.features_removed_by_class},
             {"features_removed_by_motion", f.build.motion.features_removed_by_motion},
             {"features_kept_by_motion", f.build.motion.features_kept_by_motion},

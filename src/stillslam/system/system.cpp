@@ -475,6 +475,7 @@ FrameStats System::process(const SensorFrame& input) {
   stats.index = input.index;
   stats.timestamp = input.timestamp;
   FrameDynamics dynamics;
+  if (motion_stage_) motion_stage_->set_prediction(tracker_->predicted_pose());
   Frame frame = builder_->build(input, next_frame_id_++, &stats.build, &dynamics);
   if (fresh_mask_check_ && async_masks_->fresh()) {
     // An earlier frame's own mask may have come: what that frame saw on people goes.

@@ -149,6 +149,27 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
   if (motion_) {
     motion_->collect(input.gray, sensor_ == SensorType::Rgbd ? input.depth : cv::Mat(), exclude, left.keypoints,
                      *removed, st.motion);
+    // Motion.predictedCheck: objects found moving at the predicted pose lose their features in this frame.
+    const cv::Mat1b moving = motion_->judge_predicted(left.keypoints, left.descriptors, st.motion);
+    if (!moving.empty()) {
+      const std::vector<std::size_t> keep = keypoints_outside_mask(left.keypoints, moving);
+      std::size_t k = 0;
+      for (std::size_t i = 0; i < left.size(); ++i) {
+        if (k < keep.size() && keep[k] == i) {
+          ++k;
+        } else {
+          removed->push_back(left.keypoints[i].pt);
+          ++st.motion.features_removed_by_motion;
+        }
+      }
+      left = select(left, keep);
+      if (exclude.empty()) {
+        exclude = moving;
+      } else {
+        cv::bitwise_or(exclude, moving, exclude);
+      }
+      st.keypoints_after = static_cast<int>(left.size());
+    }
   }
 
   // 4. Undistortion and depth association.

@@ -89,18 +89,16 @@ void InstanceMotionCheck::relabel(std::uint32_t from, std::uint32_t to) {
   }
 }
 
-MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
+void InstanceMotionCheck::check_lengths(const MotionCheckFrame& frame) {
   const std::size_t n = frame.pixels.size();
   if (frame.depth.size() != n || frame.instance.size() != n || static_cast<std::size_t>(frame.descriptors.rows) != n) {
     throw Error("InstanceMotionCheck: pixels, depth, instance ids and descriptors of a frame must have one entry per feature");
   }
-  frames_.push_back(std::move(frame));
-  if (static_cast<int>(frames_.size()) > options_.span + 1) frames_.pop_front();
-  MotionCheckResult result;
-  if (static_cast<int>(frames_.size()) < options_.span + 1) return result;
+}
+
+void InstanceMotionCheck::compare(const MotionCheckFrame& prev, const MotionCheckFrame& cur,
+                                  MotionCheckResult& result) const {
   result.compared = true;
-  const MotionCheckFrame& prev = frames_.front();
-  const MotionCheckFrame& cur = frames_.back();
   const Eigen::Isometry3d T_cur_prev = cur.T_cam_world * prev.T_cam_world.inverse();
   DescriptorMatchOptions match;
   match.max_distance = options_.max_hamming;
@@ -119,15 +117,44 @@ MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
                          : epipolar_residual(camera_, T_cur_prev, prev.pixels[p], cur.pixels[c]);
     (cur.instance[c] == 0 ? result.background_residuals : result.residuals[cur.instance[c]]).push_back(r);
   }
+}
+
+namespace {
+
+std::vector<InstanceResiduals> instance_residuals(const MotionCheckFrame& cur, const MotionCheckResult& result) {
   std::vector<InstanceResiduals> instances;
   for (const auto& [id, residuals] : result.residuals) {
     const auto category = cur.categories.find(id);
     instances.push_back({static_cast<int>(id), category != cur.categories.end() ? category->second : "", residuals,
                          cur.objects.count(id) > 0});
   }
-  result.instances = evidence_.update(result.background_residuals, instances);
+  return instances;
+}
+
+}  // namespace
+
+MotionCheckResult InstanceMotionCheck::add(MotionCheckFrame frame) {
+  check_lengths(frame);
+  frames_.push_back(std::move(frame));
+  if (static_cast<int>(frames_.size()) > options_.span + 1) frames_.pop_front();
+  MotionCheckResult result;
+  if (static_cast<int>(frames_.size()) < options_.span + 1) return result;
+  compare(frames_.front(), frames_.back(), result);
+  result.instances = evidence_.update(result.background_residuals, instance_residuals(frames_.back(), result));
   result.background_matches = static_cast<int>(result.background_residuals.size());
   result.background_median_px = evidence_.background_median();
+  return result;
+}
+
+MotionCheckResult InstanceMotionCheck::peek(const MotionCheckFrame& frame) const {
+  check_lengths(frame);
+  MotionCheckResult result;
+  if (static_cast<int>(frames_.size()) < options_.span) return result;
+  compare(frames_[frames_.size() - static_cast<std::size_t>(options_.span)], frame, result);
+  result.instances = evidence_.peek(result.background_residuals, instance_residuals(frame, result));
+  result.background_matches = static_cast<int>(result.background_residuals.size());
+  std::vector<double> bg = result.background_residuals;
+  result.background_median_px = median_of(bg);
   return result;
 }
 

@@ -66,6 +66,12 @@ class InstanceMotionCheck {
   // Throws stillslam::Error when the per-feature vectors differ in length.
   MotionCheckResult add(MotionCheckFrame frame);
 
+  // The verdicts add(frame) would give (`frame` against the one that would
+  // then lie `span` frames before it), with nothing kept or changed: a
+  // frame judged at a predicted pose before it is tracked. Not compared
+  // (empty) until span frames are there.
+  MotionCheckResult peek(const MotionCheckFrame& frame) const;
+
   bool is_static(std::uint32_t id) const { return evidence_.is_static(static_cast<int>(id)); }
   void forget(std::uint32_t id) { evidence_.forget(static_cast<int>(id)); }
   // Whether the instance has been judged at all (has evidence, even none yet).
@@ -77,6 +83,10 @@ class InstanceMotionCheck {
   void reset();
 
  private:
+  // The residuals of cur's matches with prev (background and per instance).
+  void compare(const MotionCheckFrame& prev, const MotionCheckFrame& cur, MotionCheckResult& result) const;
+  static void check_lengths(const MotionCheckFrame& frame);
+
   PinholeCamera camera_;
   InstanceMotionCheckOptions options_;
   MotionEvidence evidence_;

@@ -91,6 +91,12 @@ std::vector<InstanceMotionState> MotionEvidence::update(const std::vector<double
   return out;
 }
 
+std::vector<InstanceMotionState> MotionEvidence::peek(const std::vector<double>& background,
+                                                      const std::vector<InstanceResiduals>& instances) const {
+  MotionEvidence copy = *this;
+  return copy.update(background, instances);
+}
+
 bool MotionEvidence::is_static(int id) const {
   const auto it = states_.find(id);
   return it != states_.end() && it->second.is_static;

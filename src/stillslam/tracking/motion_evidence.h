@@ -75,6 +75,9 @@ class MotionEvidence {
   // of each instance's. Instances not passed keep their state.
   std::vector<InstanceMotionState> update(const std::vector<double>& background,
                                           const std::vector<InstanceResiduals>& instances);
+  // The states update() would give for this frame, with nothing changed.
+  std::vector<InstanceMotionState> peek(const std::vector<double>& background,
+                                        const std::vector<InstanceResiduals>& instances) const;
   // Median background residual of the last update (0 before any).
   double background_median() const { return background_median_; }
   bool is_static(int id) const;

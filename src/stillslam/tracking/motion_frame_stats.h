@@ -6,6 +6,8 @@ struct MotionFrameStats {
   bool judged = false;        // the frame had a fresh segmentation and went through the check
   int static_instances = 0;   // instances of a dynamic class kept as static (left out of the mask)
   int moving_instances = 0;   // instances of other classes masked because they move
+  // Of those, found moving in this frame at its predicted pose (Motion.predictedCheck).
+  int predicted_moving_instances = 0;
   // Features the mask removed (the extractor's thinned count), by why the
   // pixel was masked: its class, or the check's verdict that it moves.
   int features_removed_by_class = 0;

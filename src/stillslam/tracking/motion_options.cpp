@@ -14,6 +14,7 @@ void MotionOptions::check() const {
   in_range("MotionOptions.kept_point_frames", kept_point_frames, 0, 100000);
   in_range("MotionOptions.kept_point_sigma", kept_point_sigma, 1, 100);
   in_range("MotionOptions.kept_features", kept_features, 0, 10000);
+  in_range("MotionOptions.kept_features_area_factor", kept_features_area_factor, 0, 10);
   in_range("MotionOptions.place_radius_m", place_radius_m, 0, 10);
   in_range("MotionOptions.place_memory_frames", place_memory_frames, 0, 100000);
   in_range("MotionOptions.object_moving_factor", object_moving_factor, 2, 100);

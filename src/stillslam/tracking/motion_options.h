@@ -55,6 +55,11 @@ struct MotionOptions {
   // person were masked: keeping a person then takes no features from the
   // background. 0: the frame's features cover the kept person too.
   int kept_features = 0;
+  // With kept_features: the kept people's budget is instead this factor x
+  // ORBextractor.nFeatures x their share of the image's pixels (at most
+  // kept_features), about what the frame's extraction gives them when they
+  // are not left out; 0: kept_features as it is.
+  double kept_features_area_factor = 0;
   // An object (not of a dynamic class) without a verdict from its matched
   // features is also found moving from depth (tracking/free_space_check.h):
   // when at least this share of its sampled pixels, and 3x the share of the
@@ -81,6 +86,11 @@ struct MotionOptions {
   // class was last seen takes over its evidence (instance_places.h); 0: never.
   double place_radius_m = 0.5;
   int place_memory_frames = 300;  // judged frames a place is remembered
+  // Unmasked objects are also judged before the frame is tracked, at the
+  // pose tracking predicts for it (MotionStage::judge_predicted), so an
+  // object found moving loses its features in that frame already rather than
+  // from the next one.
+  bool predicted_check = false;
   // The crowd fallback (Motion.sparseView*): the tracker's, with or without
   // `enabled` above (System copies it into TrackerOptions).
   SparseViewOptions sparse_view;

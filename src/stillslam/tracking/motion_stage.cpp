@@ -47,6 +47,7 @@ MotionStage::MotionStage(const PinholeCamera& camera, const OrbOptions& orb, std
                          int dilation_px, MotionOptions options)
     : camera_(camera),
       orb_(instance_orb(orb, options)),
+      frame_features_(orb.n_features),
       dynamic_class_ids_(std::move(dynamic_class_ids)),
       dilation_px_(dilation_px),
       options_(std::move(options)),
@@ -63,6 +64,7 @@ void MotionStage::reset() {
   judged_ = 0;
   kept_since_.clear();
   depth_history_.clear();
+  next_prediction_.reset();
 }
 
 std::uint32_t MotionStage::evidence_id(std::uint32_t stable) const {
@@ -83,6 +85,8 @@ bool MotionStage::masked(std::uint32_t id) const {
 
 cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const cv::Mat1b& held, cv::Size size) {
   pending_ = true;
+  prediction_ = next_prediction_;
+  next_prediction_.reset();
   labels_ = cv::Mat1i::zeros(size);
   categories_.clear();
   stable_of_.clear();
@@ -143,13 +147,19 @@ cv::Mat1b MotionStage::mask_for(const std::vector<Detection>& detections, const 
     kept_pixels_ = cv::Mat1b::zeros(size);
     for (const cv::Mat1b& m : kept_instances) kept_pixels_.setTo(255, m);
     cv::bitwise_or(out, dynamic_mask(kept_instances, size, dilation_px_), extraction_mask_);
+    kept_budget_ = options_.kept_features;
+    if (options_.kept_features_area_factor > 0) {
+      const double share = static_cast<double>(cv::countNonZero(kept_pixels_)) / (size.area());
+      kept_budget_ = std::min(kept_budget_, static_cast<int>(std::lround(options_.kept_features_area_factor *
+                                                                         frame_features_ * share)));
+    }
   }
   return out;
 }
 
 OrbFeatures MotionStage::kept_features(const cv::Mat& gray) const {
-  if (!pending_ || kept_pixels_.empty()) return {};
-  return extract_in_boxes(orb_, options_.kept_features, gray, kept_pixels_,
+  if (!pending_ || kept_pixels_.empty() || kept_budget_ <= 0) return {};
+  return extract_in_boxes(orb_, kept_budget_, gray, kept_pixels_,
                           merge_instance_boxes(kept_boxes_, kBoxPad, gray.size()));
 }
 
@@ -349,26 +359,92 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
     if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
   }
   if (ids.size() == 1) return;
-  const DepthView& earlier = depth_history_.front();
-  const Eigen::Isometry3d T_earlier_current = earlier.T_cam_world * frame.T_cam_world().inverse();
+  for (std::uint32_t id : moving_by_depth(frame.T_cam_world(), depth_history_.front(), ids)) moving_.insert(id);
+}
+
+std::set<std::uint32_t> MotionStage::moving_by_depth(const Eigen::Isometry3d& T_cam_world, const DepthView& earlier,
+                                                     const std::set<std::uint32_t>& ids) const {
+  const Eigen::Isometry3d T_earlier_current = earlier.T_cam_world * T_cam_world.inverse();
   const auto counts = count_seen_through(camera_, depth_, labels_, ids, T_earlier_current, earlier.depth,
                                          options_.free_space, earlier.people);
+  std::set<std::uint32_t> out;
   // The other way round: the object's earlier pixels where this view sees farther (it left them).
-  std::map<std::uint32_t, FreeSpaceCount> vacated;
   if (options_.free_space_vacated) {
     FreeSpaceOptions o = options_.free_space;
     o.count_nearer = false;
-    vacated = count_seen_through(camera_, earlier.depth, earlier.labels, ids, T_earlier_current.inverse(), depth_, o);
-  }
-  for (const auto& [id, c] : vacated) {
-    if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;
-    if (c.share() >= std::max(options_.free_space_share, 3 * vacated.at(0).share())) moving_.insert(id);
+    const auto vacated =
+        count_seen_through(camera_, earlier.depth, earlier.labels, ids, T_earlier_current.inverse(), depth_, o);
+    for (const auto& [id, c] : vacated) {
+      if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;
+      if (c.share() >= std::max(options_.free_space_share, 3 * vacated.at(0).share())) out.insert(id);
+    }
   }
   const double background = counts.at(0).share();
   for (const auto& [id, c] : counts) {
     if (id == 0 || c.samples < kMinFreeSpaceSamples) continue;
-    if (c.share() >= std::max(options_.free_space_share, 3 * background)) moving_.insert(id);
+    if (c.share() >= std::max(options_.free_space_share, 3 * background)) out.insert(id);
   }
+  return out;
+}
+
+cv::Mat1b MotionStage::judge_predicted(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
+                                       MotionFrameStats& stats) {
+  if (!pending_ || !options_.predicted_check || !prediction_ || watched_ids_.empty()) return {};
+  // The frame as on_tracked() gives it to the check, at the predicted pose;
+  // a watched object is judged on its own features.
+  MotionCheckFrame f;
+  f.T_cam_world = *prediction_;
+  f.categories = categories_;
+  for (const auto& [id, category] : categories_) {
+    if (!dynamic_ids_.count(id)) f.objects.insert(id);
+  }
+  const std::vector<cv::KeyPoint> undistorted = camera_.undistort(keypoints);
+  std::vector<int> rows;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    const std::uint32_t id = label_at(keypoints[i].pt);
+    if (watched_ids_.count(id)) continue;
+    rows.push_back(static_cast<int>(i));
+    f.pixels.emplace_back(undistorted[i].pt.x, undistorted[i].pt.y);
+    f.depth.push_back(-1.f);  // the current view's depth takes no part in a residual
+    f.instance.push_back(id);
+  }
+  f.descriptors.create(static_cast<int>(rows.size()) + inside_.descriptors.rows, 32, CV_8UC1);
+  int row = 0;
+  for (int i : rows) descriptors.row(i).copyTo(f.descriptors.row(row++));
+  for (int k = 0; k < inside_.descriptors.rows; ++k) inside_.descriptors.row(k).copyTo(f.descriptors.row(row++));
+  f.pixels.insert(f.pixels.end(), inside_.pixels.begin(), inside_.pixels.end());
+  f.depth.insert(f.depth.end(), inside_.depth.begin(), inside_.depth.end());
+  f.instance.insert(f.instance.end(), inside_.instance.begin(), inside_.instance.end());
+  const MotionCheckResult r = check_.peek(f);
+  std::set<std::uint32_t> found, no_verdict{0};
+  for (std::uint32_t id : watched_ids_) {
+    if (moving_.count(id)) continue;
+    const auto s = std::find_if(r.instances.begin(), r.instances.end(), [id](const InstanceMotionState& st) {
+      return static_cast<std::uint32_t>(st.id) == id;
+    });
+    if (s != r.instances.end() && s->verdict == MotionVerdict::Disagrees) {
+      found.insert(id);
+    } else if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) {
+      no_verdict.insert(id);
+    }
+  }
+  // Objects without a verdict from their features: from depth, against the
+  // view that will lie free_space_span() judged frames before this one.
+  const auto frames = static_cast<std::size_t>(options_.free_space_span());
+  if (options_.free_space_share > 0 && !depth_.empty() && !camera_.has_distortion() && no_verdict.size() > 1 &&
+      depth_history_.size() >= frames) {
+    const DepthView& earlier = depth_history_[depth_history_.size() - frames];
+    for (std::uint32_t id : moving_by_depth(*prediction_, earlier, no_verdict)) found.insert(id);
+  }
+  if (found.empty()) return {};
+  std::vector<cv::Mat1b> masks;
+  for (std::uint32_t id : found) {
+    moving_.insert(id);
+    masks.push_back(labels_ == static_cast<int>(id));
+  }
+  stats.moving_instances += static_cast<int>(found.size());
+  stats.predicted_moving_instances = static_cast<int>(found.size());
+  return dynamic_mask(masks, labels_.size(), dilation_px_);
 }
 
 int MotionStage::on_tracked(const Frame& frame, bool tracked) {

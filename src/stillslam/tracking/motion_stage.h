@@ -22,14 +22,17 @@
 // ids swapped by mask overlap), while the one found at its own place blocks
 // the hand-over to others.
 //
-// Per frame, in order: mask_for() (frame builder, fresh segmentation),
-// collect() (frame builder, after extraction), on_tracked() (after tracking,
-// map lock held). Frames without a fresh segmentation skip the stage.
+// Per frame, in order: set_prediction() (System, before the frame is built),
+// mask_for() (frame builder, fresh segmentation), collect() (frame builder,
+// after extraction), judge_predicted() (frame builder, Motion.predictedCheck),
+// on_tracked() (after tracking, map lock held). Frames without a fresh
+// segmentation skip the stage.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -79,9 +82,23 @@ class MotionStage {
   // static, dilated alike), so the frame's features go to the rest of the
   // view; empty when no person is kept (extract outside mask_for()'s mask).
   cv::Mat1b extraction_mask() const { return pending_ ? extraction_mask_ : cv::Mat1b(); }
-  // The kept people's own features (up to Motion.keptFeatures, on their
-  // pixels) for the frame; empty without extraction_mask().
+  // The kept people's own features (up to Motion.keptFeatures, or their
+  // area's share with Motion.keptFeaturesAreaFactor, on their pixels) for
+  // the frame; empty without extraction_mask().
   OrbFeatures kept_features(const cv::Mat& gray) const;
+
+  // The next frame's pose as tracking predicts it (its motion model, else the
+  // last pose), before the frame is built; none after a loss. Taken by the
+  // next mask_for().
+  void set_prediction(std::optional<Eigen::Isometry3d> T_cam_world) { next_prediction_ = std::move(T_cam_world); }
+  // With Motion.predictedCheck, after collect(): the unmasked objects
+  // (Motion.watchObjects) judged against the earlier view at this frame's
+  // predicted pose, from their features and, without a verdict there, from
+  // depth (Motion.freeSpaceShare), as on_tracked() judges them at the tracked
+  // pose. Those found moving are masked from this frame on; returns their
+  // mask (dilated) for the frame's keypoints to leave out, empty when none.
+  cv::Mat1b judge_predicted(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
+                            MotionFrameStats& stats);
 
   bool is_static(std::uint32_t id) const { return check_.is_static(id); }
   bool is_moving(std::uint32_t id) const { return moving_.count(id) > 0; }
@@ -105,9 +122,15 @@ class MotionStage {
   // Objects without a verdict from their features this frame, judged from
   // depth against the frame span judged frames earlier (free_space_check.h).
   void judge_objects_by_depth(const Frame& frame, const MotionCheckResult& r);
+  struct DepthView;
+  // Of `ids` (0, the background, among them), those found moving from depth
+  // between this frame's depth image at T_cam_world and the earlier view.
+  std::set<std::uint32_t> moving_by_depth(const Eigen::Isometry3d& T_cam_world, const DepthView& earlier,
+                                          const std::set<std::uint32_t>& ids) const;
 
   PinholeCamera camera_;
   OrbOptions orb_;  // the frame's extraction settings (instance_box_features.h shares out the budget)
+  int frame_features_;  // the frame's own ORBextractor.nFeatures
   std::vector<int> dynamic_class_ids_;
   int dilation_px_;
   MotionOptions options_;
@@ -120,8 +143,10 @@ class MotionStage {
   std::int64_t judged_ = 0;                       // frames judged since the last reset
   // Map point id -> the frame it was first matched on a person kept as static (Motion.keptPointFrames).
   std::map<std::uint64_t, std::uint64_t> kept_since_;
+  std::optional<Eigen::Isometry3d> next_prediction_;  // set_prediction()
   // This frame (between mask_for() and on_tracked()).
   bool pending_ = false;
+  std::optional<Eigen::Isometry3d> prediction_;
   cv::Mat1i labels_;
   std::map<std::uint32_t, std::string> categories_;      // by evidence id
   std::map<std::uint32_t, std::uint32_t> stable_of_;     // evidence id -> stable id
@@ -130,6 +155,7 @@ class MotionStage {
   cv::Mat1b watched_;                    // pixels of the unmasked objects (options_.watch_objects)
   cv::Mat1b kept_pixels_;                // of the people kept as static (Motion.keptFeatures)
   std::vector<cv::Rect> kept_boxes_;
+  int kept_budget_ = 0;                  // this frame's for the kept people (Motion.keptFeatures*)
   cv::Mat1b extraction_mask_;            // mask_for()'s plus the kept people, dilated (Motion.keptFeatures)
   std::set<std::uint32_t> watched_ids_;
   std::map<std::uint32_t, Eigen::Vector3d> mask_points_;  // camera frame, from the depth image (collect())

@@ -458,6 +458,11 @@ void Tracker::update_last_frame() {
   }
 }
 
+std::optional<Eigen::Isometry3d> Tracker::predicted_pose() const {
+  if (state_ != TrackingState::Ok || !last_frame_.has_pose()) return std::nullopt;
+  return velocity_ ? *velocity_ * last_frame_.T_cam_world() : last_frame_.T_cam_world();
+}
+
 bool Tracker::track_with_motion_model(Frame& frame, TrackingResult& result) {
   frame.set_pose(*velocity_ * last_frame_.T_cam_world());
   motion_prior_ = motion_prior(frame.T_cam_world(), options_.motion_prior);

@@ -94,6 +94,10 @@ class Tracker {
   bool makes_provisional_points(const Frame& frame) const;
 
   TrackingState state() const { return state_; }
+  // The next frame's pose as the motion model predicts it from the last
+  // tracked frame (its velocity, else the last pose itself); none while not
+  // tracking.
+  std::optional<Eigen::Isometry3d> predicted_pose() const;
   // While no map is started: the frame the first keyframe would be made from
   // if the next frames confirm it (Tracker options init_confirm_frames).
   std::optional<std::uint64_t> start_candidate_id() const {
