@@ -8,7 +8,7 @@
 //       [--no-segmentation] [--deterministic] [--check-determinism] [--raw-trajectory]
 //       [--max-frames N] [--opencv-threads N] [--json OUT] [--vocabulary FILE]
 //       [--oracle-masks DIR [--mask-miss-rate R] [--mask-miss-burst S] [--mask-miss-seed N]]
-//       [--trajectory OUT] [--keyframe-trajectory OUT]
+//       [--trajectory OUT] [--keyframe-trajectory OUT] [--live-trajectory OUT]
 //       [--realtime] [--segmenter-cost-ms MS] [--variants off,sync,async [--runs N]]
 //       [--preload [--preload-limit-mb MB]]
 //
@@ -69,7 +69,8 @@ using namespace stillslam;
 namespace {
 
 struct Args {
-  std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory, keyframe_trajectory;
+  std::string config, input, groundtruth, json, oracle_masks, vocabulary, trajectory, keyframe_trajectory,
+      live_trajectory;
   std::string oracle_instances;
   bool no_segmentation = false, deterministic = false, check_determinism = false, raw_trajectory = false;
   std::size_t max_frames = 0;
@@ -93,6 +94,9 @@ Args parse(int argc, char** argv) {
   app.add_option("--vocabulary", a.vocabulary, "ORB vocabulary (relocalization, loop closing; default: none)");
   app.add_option("--trajectory", a.trajectory, "write the estimated trajectory here (TUM format)");
   app.add_option("--keyframe-trajectory", a.keyframe_trajectory, "write the keyframes' poses here (TUM format)");
+  app.add_option("--live-trajectory", a.live_trajectory,
+                 "write each frame's pose as published when it was tracked here (TUM format; online, never moved "
+                 "by later mapping)");
   app.add_option("--oracle-masks", a.oracle_masks, "simulate folder whose ground-truth masks/ replace YOLO");
   app.add_option("--oracle-instances", a.oracle_instances,
                  "simulate folder whose ground-truth instances/ (one detection each, with its class) replace YOLO");
@@ -132,8 +136,15 @@ void print_timing(const char* name, const TimingSummary& t) {
   std::printf("  %-28s mean %7.2f  median %7.2f  p95 %7.2f  max %7.2f ms\n", name, t.mean, t.median, t.p95, t.max);
 }
 
-RunResult run_once(const Settings& settings, const Dataset& dataset, const Args& a, bool deterministic) {
+RunResult run_once(const Settings& settings, const Dataset& dataset, const Args& a, bool deterministic,
+                   Trajectory* live = nullptr) {
   RunOptions options;
+  if (live) {
+    options.on_frame = [live](const FrameStats& f, const System& system) {
+      for (const FrameStats::EarlierPose& p : f.start_frames_posed) live->push_back({p.timestamp, p.T_world_cam});
+      if (f.has_pose) live->push_back({f.timestamp, *system.last_T_world_cam()});
+    };
+  }
   options.system.use_segmentation = !a.no_segmentation;
   options.system.vocabulary_path = a.vocabulary;
   if (!a.oracle_masks.empty()) {
@@ -304,7 +315,8 @@ int bench(const Args& a) {
   }
   const auto dataset = open_dataset(a.input, settings);
   if (!a.variants.empty()) return bench_variants(a, settings, *dataset);
-  const RunResult r = run_once(settings, *dataset, a, a.deterministic);
+  Trajectory live;
+  const RunResult r = run_once(settings, *dataset, a, a.deterministic, a.live_trajectory.empty() ? nullptr : &live);
   if (r.error) std::printf("run ended early: %s\n", r.error->c_str());
   const RunSummary s = summarize_run(r.frames);
   nlohmann::json out;
@@ -389,6 +401,7 @@ int bench(const Args& a) {
   }
   if (!a.trajectory.empty()) write_trajectory(a.trajectory, r.trajectory, TrajectoryFormat::Tum);
   if (!a.keyframe_trajectory.empty()) write_trajectory(a.keyframe_trajectory, r.keyframes, TrajectoryFormat::Tum);
+  if (!a.live_trajectory.empty()) write_trajectory(a.live_trajectory, live, TrajectoryFormat::Tum);
   if (!a.json.empty()) std::ofstream(a.json) << json_text(out, 1) << "\n";
   return 0;
 }

@@ -167,11 +167,14 @@ TEST(MotionSettings, SparseViewKeysBind) {
   EXPECT_EQ(defaults.motion.sparse_view.smooth_frames, 0);
   EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.filter_gain, 0.0);
   EXPECT_EQ(defaults.motion.sparse_view.filter_frames, 5);
+  EXPECT_EQ(defaults.motion.sparse_view.filter_axes, 3);
+  EXPECT_DOUBLE_EQ(defaults.motion.sparse_view.keyframe_prior_sigma, 0.0);
   const Settings s = load_settings(dir.write(
       "b.yaml", kBase + "Motion.sparseView: 1\nMotion.sparseViewMaskedShare: 0.6\nMotion.sparseViewInliers: 80\n"
                         "Motion.sparseViewTrackedWeight: 0.3\nMotion.sparseViewKeyframes: 0\n"
                         "Motion.sparseViewPrior: 1\nMotion.sparseViewSmoothFrames: 3\n"
-                        "Motion.sparseViewFilterGain: 0.4\nMotion.sparseViewFilterFrames: 8\n"));
+                        "Motion.sparseViewFilterGain: 0.4\nMotion.sparseViewFilterFrames: 8\n"
+                        "Motion.sparseViewFilterAxes: 1\nMotion.sparseViewKeyframePriorSigma: 0.002\n"));
   EXPECT_TRUE(s.motion.sparse_view.enabled);
   EXPECT_DOUBLE_EQ(s.motion.sparse_view.masked_share, 0.6);
   EXPECT_EQ(s.motion.sparse_view.inliers, 80);
@@ -181,11 +184,15 @@ TEST(MotionSettings, SparseViewKeysBind) {
   EXPECT_EQ(s.motion.sparse_view.smooth_frames, 3);
   EXPECT_DOUBLE_EQ(s.motion.sparse_view.filter_gain, 0.4);
   EXPECT_EQ(s.motion.sparse_view.filter_frames, 8);
+  EXPECT_EQ(s.motion.sparse_view.filter_axes, 1);
+  EXPECT_DOUBLE_EQ(s.motion.sparse_view.keyframe_prior_sigma, 0.002);
   for (const std::string bad : {"Motion.sparseViewFilterGain: -0.1\n", "Motion.sparseViewFilterGain: 1.5\n",
                                 "Motion.sparseViewFilterFrames: 0\n", "Motion.sparseViewFilterFrames: 101\n",
                                 "Motion.sparseViewTrackedWeight: 2\n", "Motion.sparseViewKeyframes: 2\n",
                                 "Motion.sparseViewPrior: -1\n", "Motion.sparseViewSmoothFrames: -1\n",
-                                "Motion.sparseViewSmoothFrames: 101\n"}) {
+                                "Motion.sparseViewSmoothFrames: 101\n", "Motion.sparseViewFilterAxes: 0\n",
+                                "Motion.sparseViewFilterAxes: 4\n", "Motion.sparseViewKeyframePriorSigma: -0.001\n",
+                                "Motion.sparseViewKeyframePriorSigma: 2\n"}) {
     const std::string e = test::settings_error(dir, kBase + bad);
     EXPECT_NE(e.find(bad.substr(0, bad.find(':'))), std::string::npos) << bad << ": " << e;
   }

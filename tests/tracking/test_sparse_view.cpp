@@ -305,5 +305,177 @@ TEST(SparseView, TheFilterHoldsASparseViewsCentreHalfWayToItsPrediction) {
   EXPECT_NEAR(ahead(0.5), 0.003, 3e-4);
 }
 
+// centre_covariance against the information matrix built from central
+// finite differences of the same residuals (u, v and u_right of each
+// observation, whitened) under R' = Exp(omega) R, C' = C + dc, with the
+// rotation marginalised out the same way.
+TEST(SparseView, TheCentreCovarianceMatchesFiniteDifferences) {
+  test::SyntheticScene scene(400);
+  const Eigen::Isometry3d T = test::pose_at(0.05, 0.02, 7.0).inverse();
+  Frame f = scene.make_frame(0, T.inverse());
+  const PinholeCamera& cam = f.setup().camera;
+  ASSERT_GT(cam.bf(), 0);
+  std::vector<PoseObservation> obs;
+  for (const Eigen::Vector3d& X : scene.points()) {
+    const Eigen::Vector3d p = T * X;
+    if (p.z() <= 0.1) continue;
+    PoseObservation o;
+    o.point_world = X;
+    o.pixel = cam.project(p);
+    if (o.pixel.x() < 0 || o.pixel.x() > 640 || o.pixel.y() < 0 || o.pixel.y() > 480) continue;
+    if (obs.size() % 2 == 0) o.u_right = cam.project_right_u(p);  // half with depth
+    o.inv_sigma2 = obs.size() % 3 == 0 ? 1.0 : 1.0 / 1.44;
+    obs.push_back(o);
+  }
+  ASSERT_GT(obs.size(), 100u);
+  const auto residuals = [&](const Eigen::Matrix<double, 6, 1>& d) {
+    Eigen::Isometry3d Tp = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d w = d.head<3>();
+    const Eigen::Matrix3d Rp = (w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                                             : Eigen::Matrix3d::Identity()) * T.linear();
+    const Eigen::Vector3d C = T.inverse().translation() + d.tail<3>();
+    Tp.linear() = Rp;
+    Tp.translation() = -(Rp * C);
+    std::vector<double> r;
+    for (const PoseObservation& o : obs) {
+      const Eigen::Vector3d p = Tp * o.point_world;
+      const double s = std::sqrt(o.inv_sigma2);
+      r.push_back(s * cam.project(p).x());
+      r.push_back(s * cam.project(p).y());
+      if (o.u_right >= 0) r.push_back(s * cam.project_right_u(p));
+    }
+    return Eigen::Map<Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())).eval();
+  };
+  const double h = 1e-6;
+  const Eigen::Index m = residuals(Eigen::Matrix<double, 6, 1>::Zero()).size();
+  Eigen::MatrixXd J(m, 6);
+  for (int k = 0; k < 6; ++k) {
+    Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
+    d[k] = h;
+    const Eigen::VectorXd plus = residuals(d);
+    d[k] = -h;
+    J.col(k) = (plus - residuals(d)) / (2 * h);
+  }
+  const Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
+  const Eigen::Matrix3d info =
+      H.bottomRightCorner<3, 3>() - H.bottomLeftCorner<3, 3>() * H.topLeftCorner<3, 3>().inverse() * H.topRightCorner<3, 3>();
+  const Eigen::Matrix3d expected = info.inverse();
+  const Eigen::Matrix3d got = centre_covariance(cam, T, obs);
+  EXPECT_LT((got - expected).norm(), 1e-4 * expected.norm()) << got << "\n" << expected;
+  // Too few observations: no covariance.
+  EXPECT_TRUE(centre_covariance(cam, T, {obs[0], obs[1]}).isZero());
+}
+
+TEST(SparseView, TheWeakAxesAreTheLargestEigenvectorsOfTheCovariance) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d cov = R * Eigen::Vector3d(1e-6, 9e-6, 4e-6).asDiagonal() * R.transpose();
+  const Eigen::Vector3d weakest = R.col(1), next = R.col(2);
+  EXPECT_LT((weak_axes_projection(cov, 1) - weakest * weakest.transpose()).norm(), 1e-9);
+  EXPECT_LT((weak_axes_projection(cov, 2) - weakest * weakest.transpose() - next * next.transpose()).norm(), 1e-9);
+  EXPECT_EQ(weak_axes_projection(cov, 3), Eigen::Matrix3d::Identity());
+  EXPECT_EQ(weak_axes_projection(Eigen::Matrix3d::Zero(), 1), Eigen::Matrix3d::Identity());
+}
+
+// SparseViewOptions::filter_axes on a trajectory: jitter along y and z; with
+// each flagged frame's projection onto y the filter takes out y's jitter as
+// with every axis, and z keeps its jitter exactly.
+TEST(SparseView, OnOneAxisTheFilterLeavesTheOthersAsGiven) {
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<bool> sparse;
+  std::vector<std::uint64_t> maps(40, 1);
+  for (int i = 0; i < 40; ++i) {
+    const bool flagged = i >= 10 && i < 30;
+    const double jitter = flagged ? (i % 2 == 0 ? 0.01 : -0.01) : 0.0;
+    centres.emplace_back(0.01 * i, jitter, -jitter);
+    sparse.push_back(flagged);
+  }
+  const std::vector<Eigen::Vector3d> given = centres;
+  std::vector<Eigen::Vector3d> all = given;
+  filter_sparse_centres(all, sparse, maps, 0.5, 5);
+  const Eigen::Vector3d y = Eigen::Vector3d::UnitY();
+  const std::vector<Eigen::Matrix3d> onto_y(40, y * y.transpose());
+  filter_sparse_centres(centres, sparse, maps, 0.5, 5, onto_y);
+  double y_rms = 0, y_all_rms = 0;
+  for (int i = 10; i < 30; ++i) {
+    EXPECT_NEAR(centres[i].z(), given[i].z(), 1e-15) << i;
+    EXPECT_NEAR(centres[i].x(), given[i].x(), 1e-12) << i;
+    y_rms += centres[i].y() * centres[i].y();
+    y_all_rms += all[i].y() * all[i].y();
+  }
+  y_rms = std::sqrt(y_rms / 20);
+  y_all_rms = std::sqrt(y_all_rms / 20);
+  EXPECT_LT(y_rms, 0.006) << y_rms;  // of the 10 mm
+  EXPECT_LT(std::abs(y_rms - y_all_rms), 0.002) << y_rms << " " << y_all_rms;
+}
+
+// SparseViewOptions::filter_axes online: with one axis the published centre
+// differs from the unfiltered one only along the frame's least certain
+// direction, which the result reports.
+TEST(SparseView, OnOneAxisTheOnlineFilterMovesTheCentreAlongTheWeakDirection) {
+  const auto run = [](double gain, int axes, Eigen::Matrix3d* projection) {
+    TrackerOptions o = SparseTracker::options(1.0, 0);
+    o.sparse_view.filter_gain = gain;
+    o.sparse_view.filter_axes = axes;
+    SparseTracker t(o);
+    t.start(8);
+    const double path = 0.01 * static_cast<double>(t.id);
+    Frame f = t.scene.make_frame(t.id, test::pose_at(path + 0.006, 0.004));
+    f.set_dynamic_mask(mask_of_left_part(0.6));
+    const TrackingResult r = t.tracker.track(f);
+    EXPECT_EQ(r.sparse_view, SparseView::Tracked) << r.reason;
+    if (projection) *projection = r.sparse_filter_projection;
+    return Eigen::Vector3d(centre(f));
+  };
+  Eigen::Matrix3d P;
+  const Eigen::Vector3d tracked = run(0, 3, nullptr), one_axis = run(0.5, 1, &P), all = run(0.5, 3, nullptr);
+  EXPECT_NEAR(P.trace(), 1.0, 1e-9);  // rank one
+  EXPECT_LT((P * P - P).norm(), 1e-9);
+  const Eigen::Vector3d moved = one_axis - tracked;
+  EXPECT_LT(((Eigen::Matrix3d::Identity() - P) * moved).norm(), 3e-4) << moved.transpose();
+  EXPECT_GT((all - tracked).norm(), 0.002);  // every axis: half of the 7 mm off the path
+  // Along the weak direction both filters move the centre alike.
+  EXPECT_NEAR((P * moved).norm(), (P * (all - tracked)).norm(), 5e-4);
+  EXPECT_GT((P * moved).norm(), 0.001) << "weak direction " << (P * Eigen::Vector3d(1, 1, 1)).transpose();
+}
+
+// SparseViewOptions::keyframe_prior_sigma: the keyframes made in the sparse
+// views carry a centre prior at their centre at creation, with sqrt_info the
+// weak axis over sigma; keyframes made in views that are not sparse carry none.
+TEST(SparseView, KeyframesMadeInSparseViewsKeepACentrePrior) {
+  TrackerOptions o = SparseTracker::options(1.0, 0);
+  o.sparse_view.keyframe_prior_sigma = 0.002;
+  o.sparse_view.filter_axes = 1;
+  o.close_points_tracked_min = 100000;  // any untracked close point asks for a keyframe, no budget
+  o.close_points_untracked_min = 0;
+  o.keyframe_budget.per_second = 0;
+  SparseTracker t(o);
+  t.start(4);
+  int with_prior = 0, sparse_keyframes = 0, plain_keyframes = 0;
+  for (double share : {0.6, 0.6, 0.6, 0.2, 0.2, 0.2}) {
+    Frame f = t.scene.make_frame(t.id, test::pose_at(0.01 * static_cast<double>(t.id)));
+    ++t.id;
+    f.set_dynamic_mask(mask_of_left_part(share));
+    const TrackingResult r = t.tracker.track(f);
+    ASSERT_EQ(r.state, TrackingState::Ok) << r.reason;
+    if (!r.new_keyframe) continue;
+    const auto& prior = f.reference_keyframe()->centre_prior();
+    if (share < 0.5) {
+      ++plain_keyframes;
+      EXPECT_FALSE(prior.has_value());
+      continue;
+    }
+    ++sparse_keyframes;
+    ASSERT_TRUE(prior.has_value());
+    ++with_prior;
+    EXPECT_LT((prior->mean - centre(f)).norm(), 1e-12);
+    const Eigen::Matrix3d P = prior->sqrt_info * 0.002;
+    EXPECT_NEAR(P.trace(), 1.0, 1e-9);
+    EXPECT_LT((P * P - P).norm(), 1e-9);
+  }
+  EXPECT_GE(sparse_keyframes, 2);
+  EXPECT_EQ(with_prior, sparse_keyframes);
+  EXPECT_GE(plain_keyframes, 1);
+}
+
 }  // namespace
 }  // namespace stillslam

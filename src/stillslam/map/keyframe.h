@@ -97,6 +97,17 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   bool is_origin() const { return origin_; }
   void set_origin(bool origin) { origin_ = origin; }
 
+  // A Gaussian prior on the camera centre that local BA adds for this
+  // keyframe: residual sqrt_info * (centre - mean), world axes
+  // (Motion.sparseViewKeyframePriorSigma: a keyframe made in a sparse view is
+  // held near its centre at creation along its least certain directions).
+  struct CentrePrior {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d sqrt_info = Eigen::Matrix3d::Zero();
+  };
+  const std::optional<CentrePrior>& centre_prior() const { return centre_prior_; }
+  void set_centre_prior(const CentrePrior& prior) { centre_prior_ = prior; }
+
   bool is_bad() const { return bad_; }
   // Culling: removes the keyframe from the covisibility graph and its points'
   // observations, re-parents its children. The origin keyframe can't be culled.
@@ -129,6 +140,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   bool bad_ = false;
   bool not_erase_ = false;
   bool origin_ = false;
+  std::optional<CentrePrior> centre_prior_;
 };
 
 using KeyFramePtr = std::shared_ptr<KeyFrame>;

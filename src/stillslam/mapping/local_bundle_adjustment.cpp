@@ -19,6 +19,10 @@ LocalBundleAdjustmentProblem gather_local_window(KeyFrame& kf, const LocalWindow
     b.id = k->id();
     b.T_cam_world = k->T_cam_world();
     b.fixed = fixed || k->is_origin();  // the map's first keyframe anchors the gauge
+    if (k->centre_prior()) {
+      b.prior_centre = k->centre_prior()->mean;
+      b.prior_sqrt_info = k->centre_prior()->sqrt_info;
+    }
     problem.ba_keyframes.push_back(b);
   };
   add_keyframe(&kf, false);

@@ -37,6 +37,32 @@ class AbortCallback final : public ceres::IterationCallback {
   const BundleAdjustmentOptions& options_;
 };
 
+// BaKeyframe's centre prior on the 7-parameter pose: C = -R^T t, and under
+// the left update [Exp(omega), v] * T the centre moves by -R^T v (omega
+// leaves it), so the tangent Jacobian is [0, -L R^T] (column 7 zero, as
+// se3_manifold.h asks).
+class CentrePriorCost final : public ceres::SizedCostFunction<3, 7> {
+ public:
+  CentrePriorCost(const Eigen::Vector3d& centre, const Eigen::Matrix3d& sqrt_info)
+      : centre_(centre), sqrt_info_(sqrt_info) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Matrix3d R = Eigen::Map<const Eigen::Quaterniond>(parameters[0]).toRotationMatrix();
+    const Eigen::Vector3d t(parameters[0][4], parameters[0][5], parameters[0][6]);
+    Eigen::Map<Eigen::Vector3d> r(residuals);
+    r = sqrt_info_ * (-(R.transpose() * t) - centre_);
+    if (jacobians && jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, 3, 7, Eigen::RowMajor>> J(jacobians[0]);
+      J.setZero();
+      J.block<3, 3>(0, 3) = -sqrt_info_ * R.transpose();
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Vector3d centre_;
+  Eigen::Matrix3d sqrt_info_;
+};
+
 // Dense Schur is fastest while the reduced camera system is small.
 constexpr int kDenseSchurMaxFreeKeyframes = 40;
 
@@ -74,9 +100,15 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
   // costs: the whole observation (or, split, its left-image part); right_costs:
   // the right-image row of a split stereo observation. Made by the first pass
   // that goes to Ceres (the Schur passes do not use them).
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs, right_costs;
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs, right_costs, prior_costs;
   auto make_costs = [&] {
     if (!costs.empty()) return;
+    prior_costs.resize(keyframes.size());
+    for (std::size_t i = 0; i < keyframes.size(); ++i) {
+      if (!keyframes[i].fixed && !keyframes[i].prior_sqrt_info.isZero()) {
+        prior_costs[i] = std::make_unique<CentrePriorCost>(keyframes[i].prior_centre, keyframes[i].prior_sqrt_info);
+      }
+    }
     costs.resize(n_obs);
     right_costs.resize(n_obs);
     for (std::size_t i = 0; i < n_obs; ++i) {
@@ -164,6 +196,7 @@ BundleAdjustmentResult bundle_adjust(const PinholeCamera& camera, std::vector<Ba
           problem.SetParameterBlockConstant(pose);
         } else {
           ++free_keyframes;
+          if (prior_costs[o.keyframe]) problem.AddResidualBlock(prior_costs[o.keyframe].get(), nullptr, pose);
         }
         ordering->AddElementToGroup(pose, 1);
       }

@@ -18,6 +18,11 @@ struct BaKeyframe {
   std::uint64_t id = 0;  // caller's id, carried through untouched
   Eigen::Isometry3d T_cam_world = Eigen::Isometry3d::Identity();
   bool fixed = false;  // held constant (e.g. covisible keyframes outside the local window)
+  // A prior on a free keyframe's camera centre C (world axes): the residual
+  // prior_sqrt_info * (C - prior_centre), never robust, in every pass. A zero
+  // matrix: none. Not counted in initial_cost / final_cost.
+  Eigen::Vector3d prior_centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d prior_sqrt_info = Eigen::Matrix3d::Zero();
 };
 
 struct BaPoint {

@@ -203,6 +203,20 @@ bool SchurBundleAdjuster::evaluate(const std::vector<PoseParams>& poses, const s
       gp_[j] = gp;
     }
   }
+  // BaKeyframe's centre prior: C = -R^T t moves by -R^T v under the left
+  // update, so J = [0, -L R^T].
+  for (std::size_t a = 0; a < free_poses_.size(); ++a) {
+    const BaKeyframe& b = keyframes_[free_poses_[a]];
+    if (b.prior_sqrt_info.isZero()) continue;
+    const Eigen::Matrix3d& R = R_[free_poses_[a]];
+    const Eigen::Vector3d centre = -(R.transpose() * Eigen::Map<const Eigen::Vector3d>(poses[free_poses_[a]].data() + 4));
+    const Eigen::Vector3d r = b.prior_sqrt_info * (centre - b.prior_centre);
+    cost += 0.5 * r.squaredNorm();
+    if (!linearize) continue;
+    const Eigen::Matrix3d Jv = -b.prior_sqrt_info * R.transpose();
+    U_[a].bottomRightCorner<3, 3>().noalias() += Jv.transpose() * Jv;
+    gc_[a].tail<3>().noalias() += Jv.transpose() * r;
+  }
   if (linearize) {
     gradient_max_ = 0;
     double x2 = 0;

@@ -34,6 +34,9 @@ void bind_motion(const YamlReader& yaml, MotionOptions& options) {
   keys.flag("sparseViewPrior", options.sparse_view.prior, "SparseViewOptions.prior");
   keys.number("sparseViewFilterGain", options.sparse_view.filter_gain, "SparseViewOptions.filter_gain", {0, 1});
   keys.integer("sparseViewFilterFrames", options.sparse_view.filter_frames, "SparseViewOptions.filter_frames", {1, 100});
+  keys.integer("sparseViewFilterAxes", options.sparse_view.filter_axes, "SparseViewOptions.filter_axes", {1, 3});
+  keys.number("sparseViewKeyframePriorSigma", options.sparse_view.keyframe_prior_sigma,
+              "SparseViewOptions.keyframe_prior_sigma", {0, 1});
   keys.integer("sparseViewSmoothFrames", options.sparse_view.smooth_frames, "SparseViewOptions.smooth_frames", {0, 100});
   keys.number("sparseViewMaskedShare", options.sparse_view.masked_share, "SparseViewOptions.masked_share", {0, 1});
   keys.integer("sparseViewInliers", options.sparse_view.inliers, "SparseViewOptions.inliers", {0, 100000});

@@ -574,6 +574,7 @@ FrameStats System::process(const SensorFrame& input) {
     records_.back().sparse_view = result.sparse_view == SparseView::Tracked ||
                                   result.sparse_view == SparseView::Blended ||
                                   result.sparse_view == SparseView::Predicted;
+    records_.back().filter_projection = result.sparse_filter_projection;
     if (options_.trajectory_refinement.enabled) {
       // It reads the matched points' observations, which local mapping changes.
       std::lock_guard<std::mutex> lock(tracker_->map().update_mutex());
@@ -704,11 +705,13 @@ std::vector<MapPose> System::trajectory_with_maps() const {
   }
   std::vector<MapPose> kept;
   std::vector<bool> sparse;
+  std::vector<Eigen::Matrix3d> projections;
   kept.reserve(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (!done[i]) continue;
     kept.push_back(out[i]);
     sparse.push_back(records_[i].sparse_view);
+    projections.push_back(records_[i].filter_projection);
   }
   if (sparse_view_filter_gain_ > 0 || sparse_view_smooth_frames_ > 0) {
     // The sparse views' centres, filtered and then smoothed within each map.
@@ -719,7 +722,7 @@ std::vector<MapPose> System::trajectory_with_maps() const {
       maps.push_back(p.map_id);
     }
     if (sparse_view_filter_gain_ > 0) {
-      filter_sparse_centres(centres, sparse, maps, sparse_view_filter_gain_, sparse_view_filter_frames_);
+      filter_sparse_centres(centres, sparse, maps, sparse_view_filter_gain_, sparse_view_filter_frames_, projections);
     }
     if (sparse_view_smooth_frames_ > 0) smooth_sparse_centres(centres, sparse, maps, sparse_view_smooth_frames_);
     for (std::size_t i = 0; i < kept.size(); ++i) kept[i].pose.T_world_cam.translation() = centres[i];

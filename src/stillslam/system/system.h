@@ -169,6 +169,8 @@ class System {
     bool keyframe;                   // the frame became `reference`
     FrameObservations observations;  // empty without trajectory refinement
     bool sparse_view = false;        // the crowd fallback acted on it (Motion.sparseViewSmoothFrames)
+    // The directions the centre filter acts on (Motion.sparseViewFilterAxes).
+    Eigen::Matrix3d filter_projection = Eigen::Matrix3d::Identity();
     // As tracked, moved with its reference keyframe since. Caller holds the
     // lock of the map that holds the reference keyframe.
     Eigen::Isometry3d T_cam_world() const { return T_cam_ref * reference->T_cam_world_resolved(); }

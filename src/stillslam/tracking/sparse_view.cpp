@@ -1,5 +1,7 @@
 #include "stillslam/tracking/sparse_view.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 
 #include "stillslam/core/option_check.h"
@@ -15,6 +17,8 @@ void SparseViewOptions::check() const {
   in_range("SparseViewOptions.smooth_frames", smooth_frames, 0, 100);
   in_range("SparseViewOptions.filter_gain", filter_gain, 0.0, 1.0);
   in_range("SparseViewOptions.filter_frames", filter_frames, 1, 100);
+  in_range("SparseViewOptions.filter_axes", filter_axes, 1, 3);
+  in_range("SparseViewOptions.keyframe_prior_sigma", keyframe_prior_sigma, 0.0, 1.0);
 }
 
 double masked_share(const Frame& frame) { return mask_coverage(frame.dynamic_mask()); }
@@ -65,7 +69,8 @@ Eigen::Vector3d CentreFilter::step(const Eigen::Vector3d& last, const Eigen::Vec
 }
 
 void filter_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
-                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames) {
+                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames,
+                           const std::vector<Eigen::Matrix3d>& projections) {
   if (gain <= 0) return;
   CentreFilter filter(gain);
   for (std::size_t i = 0; i < centres.size(); ++i) {
@@ -82,8 +87,47 @@ void filter_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vec
     const Eigen::Vector3d start_velocity =
         first < i - 1 ? Eigen::Vector3d((centres[i - 1] - centres[first]) / static_cast<double>(i - 1 - first))
                       : Eigen::Vector3d::Zero();
-    centres[i] = filter.step(centres[i - 1], start_velocity, centres[i], 1);
+    const Eigen::Vector3d filtered = filter.step(centres[i - 1], start_velocity, centres[i], 1);
+    const bool all_axes = projections.empty() || projections[i] == Eigen::Matrix3d::Identity();
+    centres[i] = all_axes ? filtered : Eigen::Vector3d(centres[i] + projections[i] * (filtered - centres[i]));
   }
+}
+
+Eigen::Matrix3d centre_covariance(const PinholeCamera& camera, const Eigen::Isometry3d& T_cam_world,
+                                  const std::vector<PoseObservation>& observations) {
+  // Perturbation [omega, dc]: R' = Exp(omega) R, C' = C + dc, so a point in
+  // the camera moves by dp = -[p]x omega - R dc.
+  const Eigen::Matrix3d R = T_cam_world.linear();
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  int used = 0;
+  for (const PoseObservation& o : observations) {
+    const Eigen::Vector3d p = T_cam_world * o.point_world;
+    if (p.z() <= 0) continue;
+    Eigen::Matrix<double, 3, 6> Jp;
+    Jp.leftCols<3>() << 0, p.z(), -p.y(), -p.z(), 0, p.x(), p.y(), -p.x(), 0;  // -[p]x
+    Jp.rightCols<3>() = -R;
+    const double iz = 1.0 / p.z(), iz2 = iz * iz;
+    Eigen::Matrix<double, 3, 3> Jproj = Eigen::Matrix3d::Zero();
+    Jproj.row(0) << camera.fx() * iz, 0, -camera.fx() * p.x() * iz2;
+    Jproj.row(1) << 0, camera.fy() * iz, -camera.fy() * p.y() * iz2;
+    const int rows = o.u_right >= 0 && camera.bf() > 0 ? 3 : 2;
+    if (rows == 3) Jproj.row(2) << camera.fx() * iz, 0, -camera.fx() * p.x() * iz2 + camera.bf() * iz2;
+    const Eigen::Matrix<double, 3, 6> J = Jproj * Jp;
+    H += o.inv_sigma2 * J.topRows(rows).transpose() * J.topRows(rows);
+    ++used;
+  }
+  if (used < 3) return Eigen::Matrix3d::Zero();
+  const Eigen::Matrix3d Hrr = H.topLeftCorner<3, 3>(), Hrc = H.topRightCorner<3, 3>(), Hcc = H.bottomRightCorner<3, 3>();
+  const Eigen::Matrix3d info = Hcc - Hrc.transpose() * Hrr.ldlt().solve(Hrc);
+  return info.ldlt().solve(Eigen::Matrix3d::Identity());
+}
+
+Eigen::Matrix3d weak_axes_projection(const Eigen::Matrix3d& covariance, int axes) {
+  if (axes >= 3 || covariance.isZero()) return Eigen::Matrix3d::Identity();
+  // Eigenvalues ascending: the last `axes` columns are the least certain directions.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (covariance + covariance.transpose()));
+  const Eigen::MatrixXd weak = eig.eigenvectors().rightCols(std::max(0, axes));
+  return weak * weak.transpose();
 }
 
 }  // namespace stillslam

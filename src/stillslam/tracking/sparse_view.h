@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stillslam/map/frame.h"
+#include "stillslam/optimize/pose_optimizer.h"
 
 namespace stillslam {
 
@@ -47,6 +48,18 @@ struct SparseViewOptions {
   // view's centre jitters by millimetres. 0: off.
   double filter_gain = 0;
   int filter_frames = 5;
+  // How many directions of the camera centre the filter acts on: the
+  // `filter_axes` least certain ones of the tracked pose (eigenvectors of the
+  // centre's covariance from its inliers, rotation marginalised out); along
+  // the others the tracked centre is kept. 3: every direction.
+  int filter_axes = 3;
+  // > 0: a keyframe made in a tracked sparse view keeps a prior in local BA
+  // on its camera centre at creation (after the filter, when on), with this
+  // sigma (m) along the `filter_axes` least certain directions of its pose
+  // and none along the others (KeyFrame::centre_prior): bundle adjustment
+  // cannot slide a crowd stretch of keyframes, anchored only by far points,
+  // along the direction those points leave free. 0: off.
+  double keyframe_prior_sigma = 0;
   // Throws OptionError naming the field, its value and the valid range.
   void check() const;
 };
@@ -96,8 +109,26 @@ class CentreFilter {
 // each run started from the mean motion over the `velocity_frames` centres
 // before it that share its `group` (map id). A flagged frame with no earlier
 // centre of its group keeps its centre.
+// With `projections` (one per frame, or empty for identity) a flagged
+// centre moves to the filter's only along its projection:
+// c + P (filtered - c).
 void filter_sparse_centres(std::vector<Eigen::Vector3d>& centres, const std::vector<bool>& sparse,
-                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames);
+                           const std::vector<std::uint64_t>& group, double gain, int velocity_frames,
+                           const std::vector<Eigen::Matrix3d>& projections = {});
+
+// Covariance (m^2, world axes) of the camera centre of the pose
+// `T_cam_world` estimated from `observations` (each pixel residual with its
+// inv_sigma2, the right-image coordinate too when it has one), with the
+// rotation marginalised out: the inverse of the centre block's Schur
+// complement of the 6x6 information matrix. Fewer than 3 usable
+// observations: a zero matrix.
+Eigen::Matrix3d centre_covariance(const PinholeCamera& camera, const Eigen::Isometry3d& T_cam_world,
+                                  const std::vector<PoseObservation>& observations);
+
+// Projection (world axes) onto the `axes` least certain directions of a
+// centre covariance (its eigenvectors of the largest eigenvalues); identity
+// for 3 axes or a zero covariance.
+Eigen::Matrix3d weak_axes_projection(const Eigen::Matrix3d& covariance, int axes);
 
 // `tracked_weight` of the way from `predicted` to `tracked` (rotation by
 // slerp, camera centre linearly); both are T_cam_world.

@@ -149,7 +149,13 @@ TrackingResult Tracker::track(Frame& frame) {
       want_keyframe = false;
     }
     if (want_keyframe) {
+      // SparseViewOptions::keyframe_prior_sigma: from the inliers, before the keyframe takes the matches.
+      std::optional<KeyFrame::CentrePrior> centre_prior;
+      if (options_.sparse_view.keyframe_prior_sigma > 0 && result.sparse_view == SparseView::Tracked) {
+        centre_prior = sparse_keyframe_prior(frame);
+      }
       create_keyframe(frame, start_window);
+      if (centre_prior) frame.reference_keyframe()->set_centre_prior(*centre_prior);
       result.new_keyframe = true;
       if (options_.probe) options_.probe(TrackingStage::NewKeyFrame, frame, *map_);
     }
@@ -197,7 +203,7 @@ bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok
   }
   if (ok && result.inliers >= options_.sparse_view.inliers) {
     result.sparse_view = SparseView::Tracked;
-    if (options_.sparse_view.filter_gain > 0) filter_sparse_centre(frame);
+    if (options_.sparse_view.filter_gain > 0) filter_sparse_centre(frame, result);
     return true;
   }
   centre_filter_.stop();
@@ -217,7 +223,7 @@ bool Tracker::sparse_view_fallback(Frame& frame, TrackingResult& result, bool ok
   return true;
 }
 
-void Tracker::filter_sparse_centre(Frame& frame) {
+void Tracker::filter_sparse_centre(Frame& frame, TrackingResult& result) {
   // Only while tracking, from the last frame's pose through its reference keyframe.
   if (state_ != TrackingState::Ok || !last_frame_.has_pose() || past_poses_.empty() ||
       past_poses_.back().frame_id >= frame.id()) {
@@ -233,13 +239,22 @@ void Tracker::filter_sparse_centre(Frame& frame) {
   if (last.frame_id > first.frame_id) {
     start_velocity = (centre_of(last) - centre_of(first)) / static_cast<double>(last.frame_id - first.frame_id);
   }
-  const Eigen::Vector3d centre = centre_filter_.step(centre_of(last), start_velocity, frame.camera_center(),
-                                                     static_cast<int>(frame.id() - last.frame_id));
-  // The pose again from the inliers, its centre held at the filtered one.
+  const Eigen::Vector3d tracked = frame.camera_center();
+  const Eigen::Vector3d filtered = centre_filter_.step(centre_of(last), start_velocity, tracked,
+                                                       static_cast<int>(frame.id() - last.frame_id));
+  // The pose again from the inliers, its centre held at the filtered one
+  // along the pose's least certain directions (SparseViewOptions::filter_axes).
   std::vector<PoseObservation> observations;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
   }
+  if (options_.sparse_view.filter_axes < 3) {
+    result.sparse_filter_projection = weak_axes_projection(
+        centre_covariance(frame.setup().camera, frame.T_cam_world(), observations), options_.sparse_view.filter_axes);
+  }
+  const Eigen::Vector3d centre = options_.sparse_view.filter_axes < 3
+                                     ? Eigen::Vector3d(tracked + result.sparse_filter_projection * (filtered - tracked))
+                                     : filtered;
   PosePrior prior;
   prior.T_cam_world = frame.T_cam_world();
   prior.T_cam_world.translation() = -(prior.T_cam_world.linear() * centre);
@@ -248,6 +263,19 @@ void Tracker::filter_sparse_centre(Frame& frame) {
   const PoseOptimizationResult held =
       optimize_pose(frame.setup().camera, prior.T_cam_world, observations, options_.pose, &prior);
   frame.set_pose(held.T_cam_world);
+}
+
+KeyFrame::CentrePrior Tracker::sparse_keyframe_prior(const Frame& frame) const {
+  std::vector<PoseObservation> observations;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
+  }
+  const Eigen::Matrix3d projection = weak_axes_projection(
+      centre_covariance(frame.setup().camera, frame.T_cam_world(), observations), options_.sparse_view.filter_axes);
+  KeyFrame::CentrePrior prior;
+  prior.mean = frame.camera_center();
+  prior.sqrt_info = projection / options_.sparse_view.keyframe_prior_sigma;
+  return prior;
 }
 
 Tracker::Start Tracker::try_to_start_map(Frame& frame, TrackingResult& result) {

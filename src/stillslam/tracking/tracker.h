@@ -60,6 +60,9 @@ struct TrackingResult {
   bool keyframe_deferred = false;
   bool relocalized = false;  // recovered from Lost by relocalization (reason "relocalized")
   SparseView sparse_view = SparseView::None;  // the crowd fallback's action (tracking/sparse_view.h)
+  // The directions (world axes) along which the centre filter moved this
+  // frame's centre (SparseViewOptions::filter_axes); identity otherwise.
+  Eigen::Matrix3d sparse_filter_projection = Eigen::Matrix3d::Identity();
   MotionPriorFrame motion_prior;  // the motion prior in this frame's pose stages (tracking/motion_prior.h)
   // When Ok: the frame's reference keyframe and its pose relative to it, taken
   // under the map lock (local BA may move the keyframe right after).
@@ -142,7 +145,10 @@ class Tracker {
   int refine_stage_pose(Frame& frame, TrackingResult& result);
   // SparseViewOptions::filter_gain on a tracked sparse view: its centre
   // filtered, its pose re-estimated from its inliers with the centre held.
-  void filter_sparse_centre(Frame& frame);
+  void filter_sparse_centre(Frame& frame, TrackingResult& result);
+  // SparseViewOptions::keyframe_prior_sigma: the centre prior of a keyframe
+  // made from this tracked sparse view (its inliers give the directions).
+  KeyFrame::CentrePrior sparse_keyframe_prior(const Frame& frame) const;
   bool need_new_keyframe(const Frame& frame, int inliers) const;
   // In the start's trust window (start_evidence_), new depth points only where
   // the match was not rejected and the previous frame saw the point in place.
