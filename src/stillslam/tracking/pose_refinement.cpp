@@ -12,6 +12,14 @@ PoseObservation pose_observation(const Frame& frame, std::size_t i) {
   return obs;
 }
 
+std::vector<PoseObservation> inlier_observations(const Frame& frame) {
+  std::vector<PoseObservation> observations;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
+  }
+  return observations;
+}
+
 int refine_pose(Frame& frame, const PoseOptimizerOptions& options, const PosePrior* prior) {
   const CameraSetup& setup = frame.setup();
   std::vector<PoseObservation> observations;

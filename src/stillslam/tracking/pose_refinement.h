@@ -2,6 +2,8 @@
 // Motion-only BA of a frame against its matched map points: builds the
 // observations (stereo/RGB-D ones with the virtual right coordinate), runs
 // optimize_pose and writes back the pose and per-keypoint outlier flags.
+#include <vector>
+
 #include "stillslam/map/frame.h"
 #include "stillslam/optimize/pose_optimizer.h"
 
@@ -10,6 +12,8 @@ namespace stillslam {
 // Keypoint i of the frame against its matched map point (which must be set),
 // weighted by the keypoint's pyramid level.
 PoseObservation pose_observation(const Frame& frame, std::size_t i);
+// The observations of the frame's matched map points not marked outliers.
+std::vector<PoseObservation> inlier_observations(const Frame& frame);
 
 // Returns the number of inlier observations. The frame must have a pose.
 // A prior (optimize/pose_prior.h) joins the optimization when given.

@@ -244,10 +244,7 @@ void Tracker::filter_sparse_centre(Frame& frame, TrackingResult& result) {
                                                        static_cast<int>(frame.id() - last.frame_id));
   // The pose again from the inliers, its centre held at the filtered one
   // along the pose's least certain directions (SparseViewOptions::filter_axes).
-  std::vector<PoseObservation> observations;
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
-  }
+  const std::vector<PoseObservation> observations = inlier_observations(frame);
   if (options_.sparse_view.filter_axes < 3) {
     result.sparse_filter_projection = weak_axes_projection(
         centre_covariance(frame.setup().camera, frame.T_cam_world(), observations), options_.sparse_view.filter_axes);
@@ -266,10 +263,7 @@ void Tracker::filter_sparse_centre(Frame& frame, TrackingResult& result) {
 }
 
 KeyFrame::CentrePrior Tracker::sparse_keyframe_prior(const Frame& frame) const {
-  std::vector<PoseObservation> observations;
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    if (frame.map_point(i) && !frame.is_outlier(i)) observations.push_back(pose_observation(frame, i));
-  }
+  const std::vector<PoseObservation> observations = inlier_observations(frame);
   const Eigen::Matrix3d projection = weak_axes_projection(
       centre_covariance(frame.setup().camera, frame.T_cam_world(), observations), options_.sparse_view.filter_axes);
   KeyFrame::CentrePrior prior;
