@@ -24,6 +24,26 @@ OrbFeatures select(const OrbFeatures& features, const std::vector<std::size_t>& 
   return out;
 }
 
+// Leaves out the keypoints inside `mask`; their positions go to `removed`
+// when given. Returns how many were left out.
+std::size_t drop_keypoints_in(OrbFeatures& features, const cv::Mat1b& mask, std::vector<cv::Point2f>* removed) {
+  const std::vector<std::size_t> keep = keypoints_outside_mask(features.keypoints, mask);
+  const std::size_t dropped = features.size() - keep.size();
+  if (dropped == 0) return 0;
+  if (removed) {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < features.size(); ++i) {
+      if (k < keep.size() && keep[k] == i) {
+        ++k;
+      } else {
+        removed->push_back(features.keypoints[i].pt);
+      }
+    }
+  }
+  features = select(features, keep);
+  return dropped;
+}
+
 }  // namespace
 
 FrameBuilder::FrameBuilder(std::shared_ptr<const CameraSetup> setup, SensorType sensor, const OrbOptions& orb,
@@ -131,20 +151,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
 
   // 3. Dynamic filter before anything else looks at the keypoints (a guard:
   // the extractor already kept none in the mask).
-  if (!exclude.empty()) {
-    const std::vector<std::size_t> keep = keypoints_outside_mask(left.keypoints, exclude);
-    if (dynamics && keep.size() < left.size()) {
-      std::size_t k = 0;
-      for (std::size_t i = 0; i < left.size(); ++i) {
-        if (k < keep.size() && keep[k] == i) {
-          ++k;
-        } else {
-          dynamics->removed_keypoints.push_back(left.keypoints[i].pt);
-        }
-      }
-    }
-    left = select(left, keep);
-  }
+  if (!exclude.empty()) drop_keypoints_in(left, exclude, dynamics ? &dynamics->removed_keypoints : nullptr);
   st.keypoints_after = static_cast<int>(left.size());
   if (motion_) {
     motion_->collect(input.gray, sensor_ == SensorType::Rgbd ? input.depth : cv::Mat(), exclude, left.keypoints,
@@ -152,17 +159,7 @@ Frame FrameBuilder::build(const SensorFrame& input, std::uint64_t frame_id, Fram
     // Motion.predictedCheck: objects found moving at the predicted pose lose their features in this frame.
     const cv::Mat1b moving = motion_->judge_predicted(left.keypoints, left.descriptors, st.motion);
     if (!moving.empty()) {
-      const std::vector<std::size_t> keep = keypoints_outside_mask(left.keypoints, moving);
-      std::size_t k = 0;
-      for (std::size_t i = 0; i < left.size(); ++i) {
-        if (k < keep.size() && keep[k] == i) {
-          ++k;
-        } else {
-          removed->push_back(left.keypoints[i].pt);
-          ++st.motion.features_removed_by_motion;
-        }
-      }
-      left = select(left, keep);
+      st.motion.features_removed_by_motion += static_cast<int>(drop_keypoints_in(left, moving, removed));
       if (exclude.empty()) {
         exclude = moving;
       } else {

@@ -327,6 +327,28 @@ void MotionStage::place_instances(const Frame& frame, std::vector<std::uint32_t>
   }
 }
 
+const InstanceMotionState* MotionStage::state_of(const MotionCheckResult& r, std::uint32_t id) {
+  const auto s = std::find_if(r.instances.begin(), r.instances.end(),
+                              [id](const InstanceMotionState& st) { return static_cast<std::uint32_t>(st.id) == id; });
+  return s != r.instances.end() ? &*s : nullptr;
+}
+
+void MotionStage::complete_check_frame(MotionCheckFrame& f, const Eigen::Isometry3d& T_cam_world,
+                                       const cv::Mat& descriptors, const std::vector<int>& rows) const {
+  f.T_cam_world = T_cam_world;
+  f.categories = categories_;
+  for (const auto& [id, category] : categories_) {
+    if (!dynamic_ids_.count(id)) f.objects.insert(id);
+  }
+  f.descriptors.create(static_cast<int>(rows.size()) + inside_.descriptors.rows, 32, CV_8UC1);
+  int row = 0;
+  for (int i : rows) descriptors.row(i).copyTo(f.descriptors.row(row++));
+  for (int k = 0; k < inside_.descriptors.rows; ++k) inside_.descriptors.row(k).copyTo(f.descriptors.row(row++));
+  f.pixels.insert(f.pixels.end(), inside_.pixels.begin(), inside_.pixels.end());
+  f.depth.insert(f.depth.end(), inside_.depth.begin(), inside_.depth.end());
+  f.instance.insert(f.instance.end(), inside_.instance.begin(), inside_.instance.end());
+}
+
 void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckResult& r) {
   if (options_.free_space_share <= 0 || depth_.empty() || camera_.has_distortion()) {
     depth_history_.clear();
@@ -353,10 +375,8 @@ void MotionStage::judge_objects_by_depth(const Frame& frame, const MotionCheckRe
   std::set<std::uint32_t> ids{0};
   for (const auto& [id, category] : categories_) {
     if (dynamic_ids_.count(id) || moving_.count(id)) continue;
-    const auto s = std::find_if(r.instances.begin(), r.instances.end(), [id = id](const InstanceMotionState& st) {
-      return static_cast<std::uint32_t>(st.id) == id;
-    });
-    if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
+    const InstanceMotionState* s = state_of(r, id);
+    if (!s || s->verdict == MotionVerdict::NoEvidence) ids.insert(id);
   }
   if (ids.size() == 1) return;
   for (std::uint32_t id : moving_by_depth(frame.T_cam_world(), depth_history_.front(), ids)) moving_.insert(id);
@@ -393,11 +413,6 @@ cv::Mat1b MotionStage::judge_predicted(const std::vector<cv::KeyPoint>& keypoint
   // The frame as on_tracked() gives it to the check, at the predicted pose;
   // a watched object is judged on its own features.
   MotionCheckFrame f;
-  f.T_cam_world = *prediction_;
-  f.categories = categories_;
-  for (const auto& [id, category] : categories_) {
-    if (!dynamic_ids_.count(id)) f.objects.insert(id);
-  }
   const std::vector<cv::KeyPoint> undistorted = camera_.undistort(keypoints);
   std::vector<int> rows;
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
@@ -408,23 +423,15 @@ cv::Mat1b MotionStage::judge_predicted(const std::vector<cv::KeyPoint>& keypoint
     f.depth.push_back(-1.f);  // the current view's depth takes no part in a residual
     f.instance.push_back(id);
   }
-  f.descriptors.create(static_cast<int>(rows.size()) + inside_.descriptors.rows, 32, CV_8UC1);
-  int row = 0;
-  for (int i : rows) descriptors.row(i).copyTo(f.descriptors.row(row++));
-  for (int k = 0; k < inside_.descriptors.rows; ++k) inside_.descriptors.row(k).copyTo(f.descriptors.row(row++));
-  f.pixels.insert(f.pixels.end(), inside_.pixels.begin(), inside_.pixels.end());
-  f.depth.insert(f.depth.end(), inside_.depth.begin(), inside_.depth.end());
-  f.instance.insert(f.instance.end(), inside_.instance.begin(), inside_.instance.end());
+  complete_check_frame(f, *prediction_, descriptors, rows);
   const MotionCheckResult r = check_.peek(f);
   std::set<std::uint32_t> found, no_verdict{0};
   for (std::uint32_t id : watched_ids_) {
     if (moving_.count(id)) continue;
-    const auto s = std::find_if(r.instances.begin(), r.instances.end(), [id](const InstanceMotionState& st) {
-      return static_cast<std::uint32_t>(st.id) == id;
-    });
-    if (s != r.instances.end() && s->verdict == MotionVerdict::Disagrees) {
+    const InstanceMotionState* s = state_of(r, id);
+    if (s && s->verdict == MotionVerdict::Disagrees) {
       found.insert(id);
-    } else if (s == r.instances.end() || s->verdict == MotionVerdict::NoEvidence) {
+    } else if (!s || s->verdict == MotionVerdict::NoEvidence) {
       no_verdict.insert(id);
     }
   }
@@ -463,24 +470,13 @@ int MotionStage::on_tracked(const Frame& frame, bool tracked) {
   }
   place_instances(frame, frame_labels);
   MotionCheckFrame f;
-  f.T_cam_world = frame.T_cam_world();
-  f.categories = categories_;
-  for (const auto& [id, category] : categories_) {
-    if (!dynamic_ids_.count(id)) f.objects.insert(id);
-  }
-  f.descriptors.create(static_cast<int>(judged_rows.size()) + inside_.descriptors.rows, 32, CV_8UC1);
-  int row = 0;
   for (int i : judged_rows) {
     const cv::Point2f& p = frame.keypoints()[static_cast<std::size_t>(i)].pt;
     f.pixels.emplace_back(p.x, p.y);
     f.depth.push_back(frame.depth(static_cast<std::size_t>(i)));
     f.instance.push_back(frame_labels[static_cast<std::size_t>(i)]);
-    frame.descriptors().row(i).copyTo(f.descriptors.row(row++));
   }
-  f.pixels.insert(f.pixels.end(), inside_.pixels.begin(), inside_.pixels.end());
-  f.depth.insert(f.depth.end(), inside_.depth.begin(), inside_.depth.end());
-  f.instance.insert(f.instance.end(), inside_.instance.begin(), inside_.instance.end());
-  for (int k = 0; k < inside_.descriptors.rows; ++k) inside_.descriptors.row(k).copyTo(f.descriptors.row(row++));
+  complete_check_frame(f, frame.T_cam_world(), frame.descriptors(), judged_rows);
   const MotionCheckResult r = check_.add(std::move(f));
   for (const InstanceMotionState& s : r.instances) {
     const auto id = static_cast<std::uint32_t>(s.id);

@@ -122,6 +122,13 @@ class MotionStage {
   // Objects without a verdict from their features this frame, judged from
   // depth against the frame span judged frames earlier (free_space_check.h).
   void judge_objects_by_depth(const Frame& frame, const MotionCheckResult& r);
+  // The check's frame: `f` holds the pixels, depth and instance ids of the
+  // frame's features `rows` (of `descriptors`); adds their descriptors, the
+  // pose, the instances' classes and the watched objects' own features (collect()).
+  void complete_check_frame(MotionCheckFrame& f, const Eigen::Isometry3d& T_cam_world, const cv::Mat& descriptors,
+                            const std::vector<int>& rows) const;
+  // The check's state of instance `id` this frame; null when it had no match.
+  static const InstanceMotionState* state_of(const MotionCheckResult& r, std::uint32_t id);
   struct DepthView;
   // Of `ids` (0, the background, among them), those found moving from depth
   // between this frame's depth image at T_cam_world and the earlier view.
